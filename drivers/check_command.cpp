@@ -1,0 +1,46 @@
+// perinom check: validate a scene, build its operators, and print the plan and its memory.
+#include <cstdio>
+
+#include "commands.hpp"
+#include "perinom/core/error.hpp"
+#include "perinom/scene/problem.hpp"
+
+namespace perinom::cli {
+
+int check(const Options& opt) {
+  if (opt.positional.size() != 1) throw InputError("check needs exactly one scene file");
+  const Scene scene = read_scene(opt.positional[0], opt.overrides);
+  PhaseTimer timer;
+  const Problem p = build_problem(scene, &timer);
+  const auto mb = [](std::size_t b) { return b / 1048576.0; };
+  std::printf("scene %s (%s): valid\n", scene.name.c_str(), scene.source.c_str());
+  std::printf("  dimension       %d%s\n", scene.dim,
+              scene.dim == 2 ? (scene.material.plane == PlaneCondition::strain ? ", plane strain" : ", plane stress") : "");
+  std::printf("  particles       %zu\n", p.cloud.size());
+  std::printf("  bonds           %zu (%.1f per particle)\n", p.bonds, double(p.bonds) / p.cloud.size());
+  std::printf("  model           %s, %s formulation, stabilization C_hg = %g\n",
+              scene.model.type.c_str(), scene.model.formulation.c_str(), scene.model.stabilization);
+  std::printf("  constraints     %zu fixed degrees of freedom%s\n", p.loading.fixed.size(),
+              p.loading.force.empty() ? "" : ", external forces");
+  std::printf("  solver          %s\n", scene.solver.type.c_str());
+  std::printf("  assembled operators and fields:\n");
+  std::size_t total = 0;
+  for (const auto& m : p.model->memory()) {
+    std::printf("    %-30s %10.2f MiB  (%.1f bytes per bond)\n", m.first.c_str(), mb(m.second),
+                double(m.second) / p.bonds);
+    total += m.second;
+  }
+  std::printf("    %-30s %10.2f MiB\n", "solver state (u, v, f, ...)",
+              mb(p.model->dofs() * 6 * sizeof(double)));
+  total += p.model->dofs() * 6 * sizeof(double);
+  std::printf("  not assembled: Hessian (no second-order model), Newton tangent (no newton solver)%s\n",
+              scene.model.stabilization > 0.0 ? "" : ", stabilization S (C_hg = 0)");
+  std::printf("  total           %.2f MiB (%.1f bytes per bond)\n", mb(total), double(total) / p.bonds);
+  for (const auto& probe : p.probes)
+    std::printf("  probe %-20s %s, %zu particle(s)\n", probe.spec.name.c_str(),
+                probe.spec.is_line ? "line" : "point", probe.particles.size());
+  std::printf("  setup time      %.3f s\n", timer.total());
+  return 0;
+}
+
+}  // namespace perinom::cli

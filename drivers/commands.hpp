@@ -1,0 +1,21 @@
+#pragma once
+// The subcommands of the perinom program.
+#include <string>
+#include <vector>
+
+namespace perinom::cli {
+
+struct Options {
+  std::string command, out;
+  std::vector<std::string> positional, overrides;
+  int threads = 0;
+  int dimension = 3;
+  long n = 20;
+  double stabilization = 0.5;
+};
+
+int run(const Options& opt);
+int check(const Options& opt);
+int bench(const Options& opt);
+
+}  // namespace perinom::cli

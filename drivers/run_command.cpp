@@ -1,0 +1,175 @@
+// perinom run: read a scene, build it, solve it, write VTK, CSV and summary.json.
+#include <omp.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "commands.hpp"
+#include "perinom/core/error.hpp"
+#include "perinom/io/csv_writer.hpp"
+#include "perinom/io/json_writer.hpp"
+#include "perinom/io/vtk_writer.hpp"
+#include "perinom/scene/problem.hpp"
+#include "perinom/solvers/adr.hpp"
+#include "perinom/solvers/verlet.hpp"
+#include "terminal_progress.hpp"
+
+namespace perinom::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using io::Json;
+using io::write_json_file;
+
+void prepare_output(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  const std::string probe = dir + "/.perinom-write-test";
+  std::ofstream f(probe);
+  if (ec || !f) throw InputError("--out " + dir + ": the output folder cannot be created or written");
+  f.close();
+  fs::remove(probe, ec);
+}
+
+/// Point data for one snapshot: displacement (3 components), stress, von Mises, volume.
+void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const std::vector<double>& u) {
+  const int d = p.cloud.dim;
+  const std::size_t n = p.cloud.size();
+  std::vector<double> u3(n * 3, 0.0), sigma, vm(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = 0; a < d; ++a) u3[i * 3 + a] = u[i * d + a];
+  p.model->stress3(u.data(), sigma);
+  for (std::size_t i = 0; i < n; ++i) vm[i] = von_mises(sigma.data() + i * 9);
+  series.add(time, d, n, p.cloud.x.data(),
+             {{"displacement", 3, u3.data()}, {"stress", 9, sigma.data()},
+              {"von_mises", 1, vm.data()}, {"volume", 1, p.cloud.volume.data()}});
+  series.write();
+}
+
+void write_history(const std::string& path, const History& h) {
+  io::CsvWriter csv(path);
+  csv.header(h.columns);
+  for (const auto& r : h.rows) csv.row(r);
+  csv.close();
+}
+
+/// Probe values into the summary; line probes also into probe_NAME.csv.
+Json probe_results(const Problem& p, const std::vector<double>& u, const std::string& dir) {
+  const int d = p.cloud.dim;
+  std::vector<double> sigma;
+  p.model->stress3(u.data(), sigma);
+  Json out = Json::object();
+  for (const auto& probe : p.probes) {
+    if (!probe.spec.is_line) {
+      out[probe.spec.name] = probe_value(probe.spec, d, probe.particles[0], u, sigma);
+      continue;
+    }
+    const std::string file = "probe_" + probe.spec.name + ".csv";
+    io::CsvWriter csv(dir + "/" + file);
+    std::vector<std::string> cols = {"s", "x", "y", "z", "ux", "uy", "uz", "von_mises", "value"};
+    csv.header(cols);
+    for (std::size_t k = 0; k < probe.particles.size(); ++k) {
+      const std::size_t i = probe.particles[k];
+      std::vector<double> row(9, 0.0);
+      row[0] = probe.along[k];
+      for (int a = 0; a < d; ++a) row[1 + a] = p.cloud.x[i * d + a], row[4 + a] = u[i * d + a];
+      row[7] = von_mises(sigma.data() + i * 9);
+      row[8] = probe_value(probe.spec, d, i, u, sigma);
+      csv.row(row);
+    }
+    csv.close();
+    Json j = Json::object();
+    j["file"] = file;
+    j["points"] = probe.particles.size();
+    out[probe.spec.name] = j;
+  }
+  return out;
+}
+
+}  // namespace
+
+int run(const Options& opt) {
+  if (opt.positional.size() != 1) throw InputError("run needs exactly one scene file");
+  PhaseTimer timer;
+  timer.start("read scene");
+  const Scene scene = read_scene(opt.positional[0], opt.overrides);
+  const std::string dir = opt.out.empty() ? "out/" + scene.name : opt.out;
+  prepare_output(dir);
+  Problem p = build_problem(scene, &timer);
+  std::printf("perinom: %s: %zu particles, %zu bonds, %d threads, solver %s\n", scene.name.c_str(),
+              p.cloud.size(), p.bonds, omp_get_max_threads(), scene.solver.type.c_str());
+
+  io::PvdSeries series(dir, scene.name);
+  std::vector<double> u(p.model->dofs(), 0.0), v;
+  Observer observe{scene.output.vtk_every,
+                   [&](std::int64_t, double t, const std::vector<double>& state) {
+                     add_snapshot(series, t, p, state);
+                   }};
+  TerminalProgress progress(scene.solver.type.c_str());
+  SolveReport rep;
+  std::string failure;
+  timer.start("solve");
+  try {
+    if (scene.solver.type == "adr") {
+      AdrOptions o;
+      o.tolerance = scene.solver.tolerance;
+      o.displacement_tolerance = scene.solver.displacement_tolerance;
+      o.max_iterations = scene.solver.max_iterations;
+      o.load_steps = scene.solver.load_steps;
+      o.history_every = scene.solver.history_every;
+      rep = solve_adr(*p.model, p.loading, o, u, &progress, observe);
+    } else {
+      VerletOptions o;
+      o.dt = scene.solver.dt;
+      o.safety = scene.solver.safety;
+      o.steps = scene.solver.steps;
+      o.ramp_time = scene.solver.ramp_time;
+      o.history_every = scene.solver.history_every;
+      rep = solve_verlet(*p.model, p.loading, o, u, v, &progress, observe);
+    }
+  } catch (const SolveError& e) {
+    failure = e.what();
+    progress.finish();
+  }
+  timer.start("output");
+  add_snapshot(series, rep.iterations, p, u);
+  write_history(dir + "/history.csv", rep.history);
+  Json summary = Json::object();
+  summary["scene"] = scene.source;
+  summary["name"] = scene.name;
+  summary["dimension"] = scene.dim;
+  summary["particles"] = p.cloud.size();
+  summary["bonds"] = p.bonds;
+  summary["threads"] = omp_get_max_threads();
+  Json solver = Json::object();
+  solver["type"] = scene.solver.type;
+  solver["iterations"] = static_cast<long long>(rep.iterations);
+  solver["converged"] = failure.empty() && rep.converged;
+  solver["residual"] = rep.residual;
+  solver["displacement_change"] = rep.displacement_change;
+  if (scene.solver.type == "verlet") solver["stable_time_step"] = rep.stable_time_step;
+  if (!failure.empty()) solver["error"] = failure;
+  summary["solver"] = solver;
+  summary["probes"] = probe_results(p, u, dir);
+  timer.stop();
+  Json wall = Json::object();
+  for (const auto& ph : timer.phases()) wall[ph.first] = ph.second;
+  summary["wall_time"] = wall;
+  write_json_file(dir + "/summary.json", summary);
+
+  if (!failure.empty()) throw SolveError(failure + "; the last good state is in " + dir);
+  std::printf("perinom: %s after %lld iterations (residual %.3e); results in %s\n",
+              rep.converged ? "converged" : "NOT converged", static_cast<long long>(rep.iterations),
+              rep.residual, dir.c_str());
+  for (const auto& probe : p.probes)
+    if (!probe.spec.is_line) {
+      std::vector<double> sigma;
+      p.model->stress3(u.data(), sigma);
+      std::printf("  %s = %.6e\n", probe.spec.name.c_str(),
+                  probe_value(probe.spec, scene.dim, probe.particles[0], u, sigma));
+    }
+  return rep.converged ? 0 : 1;
+}
+
+}  // namespace perinom::cli

@@ -1,0 +1,22 @@
+#pragma once
+/// @file Errors that carry context: which key, which particle, which sizes.
+#include <stdexcept>
+#include <string>
+
+namespace perinom {
+
+/// Bad input: a malformed scene, an impossible discretization, an unwritable folder.
+/// The command line maps it to exit code 2.
+class InputError : public std::runtime_error {
+ public:
+  explicit InputError(const std::string& what) : std::runtime_error(what) {}
+};
+
+/// A solve that went wrong (NaN or Inf in the state, a diverging iteration).
+/// The command line maps it to exit code 3, after writing the last good state.
+class SolveError : public std::runtime_error {
+ public:
+  explicit SolveError(const std::string& what) : std::runtime_error(what) {}
+};
+
+}  // namespace perinom

@@ -1,0 +1,25 @@
+#pragma once
+/// @file How a long solve reports progress without knowing where the report goes.
+#include <cstdint>
+
+namespace perinom {
+
+/// One progress sample.
+struct ProgressSample {
+  std::int64_t iteration = 0;   ///< iterations (or steps) done so far, all load steps
+  std::int64_t limit = 0;       ///< the iteration (or step) limit
+  int load_step = 0, load_steps = 1;
+  double residual = 0.0;        ///< relative residual (ADR) or 0
+  double target = 0.0;          ///< the tolerance the residual must reach (ADR) or 0
+  double time = 0.0;            ///< simulated time (Verlet) or 0
+};
+
+/// Receives samples; the command line draws a bar on a terminal, plain lines otherwise.
+class Progress {
+ public:
+  virtual ~Progress() = default;
+  virtual void update(const ProgressSample& s) = 0;
+  virtual void finish() {}
+};
+
+}  // namespace perinom

@@ -1,0 +1,37 @@
+#pragma once
+/// @file Regions that select particles: a side of the box, or a box selector.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "perinom/core/types.hpp"
+#include "perinom/geometry/lattice.hpp"
+
+namespace perinom {
+
+/// A side of the box: the outermost particle layer at the min or max of one axis.
+/// Names: left/right (x), bottom/top (y in 2-D, z in 3-D), front/back (y in 3-D),
+/// and the explicit xmin, xmax, ymin, ymax, zmin, zmax.
+struct Side {
+  int axis = 0;
+  bool at_max = false;
+};
+
+/// Parses a side name for a box of dimension dim; returns false if the name is unknown.
+bool parse_side(const std::string& name, int dim, Side& side);
+
+/// A region: either a side of the geometry's box, or an axis-aligned selector box.
+struct Region {
+  bool is_side = true;
+  Side side;
+  std::array<double, 3> min{0, 0, 0}, max{0, 0, 0};  ///< selector box (m), inclusive
+};
+
+/// The particles a region selects. A side selects the layer within one spacing of the face.
+std::vector<ParticleId> select(const Region& region, const BoxGeometry& box,
+                               const PointCloud& cloud);
+
+/// Outward unit normal of a side (dim entries).
+std::array<double, 3> outward_normal(const Side& side);
+
+}  // namespace perinom

@@ -1,0 +1,55 @@
+#pragma once
+/// @file Correspondence (non-ordinary state-based) peridynamics, classical weak form
+/// (THEORY sec. 3-4): f = G^T (V . P(G u)) + S u.
+#include <memory>
+#include <optional>
+
+#include "perinom/geometry/point_cloud.hpp"
+#include "perinom/materials/linear_elastic.hpp"
+#include "perinom/models/model.hpp"
+#include "perinom/neighbors/families.hpp"
+#include "perinom/operators/gradient_operator.hpp"
+#include "perinom/operators/influence.hpp"
+#include "perinom/operators/scalar_csr.hpp"
+
+namespace perinom {
+
+/// Options of the correspondence model.
+struct CorrespondenceOptions {
+  Influence influence = Influence::inverse_square;
+  double stabilization = 0.5;  ///< C_hg (dimensionless); 0 assembles no S
+};
+
+class CorrespondenceModel : public Model {
+ public:
+  /// Assembles G (and S when C_hg > 0) once. Throws InputError for a singular shape tensor.
+  CorrespondenceModel(const PointCloud& cloud, const Families& families,
+                      const LinearElastic& material, const CorrespondenceOptions& options);
+
+  std::size_t particles() const override { return volume_.size(); }
+  int dofs_per_particle() const override { return dim_; }
+  void internal_force(const double* u, double* f) override;
+  double energy(const double* u) override;
+  std::vector<double> lumped_mass() const override;
+  std::vector<double> stiffness_row_sums() const override;
+  std::vector<std::pair<std::string, std::size_t>> memory() const override;
+
+  /// grad u at every particle (N x d x d), and the 3 x 3 Cauchy stress (N x 9).
+  void gradient(const double* u, double* H) const;
+  void stress3(const double* u, std::vector<double>& sigma) const;
+
+  const GradientOperator& G() const { return G_; }
+  const ScalarCsr* S() const { return S_ ? &*S_ : nullptr; }
+  const LinearElastic& material() const { return material_; }
+  const std::vector<double>& volume() const { return volume_; }
+
+ private:
+  int dim_;
+  LinearElastic material_;
+  std::vector<double> volume_;
+  GradientOperator G_;
+  std::optional<ScalarCsr> S_;
+  std::vector<double> H_, Q_;  // workspaces: grad u and V . P
+};
+
+}  // namespace perinom

@@ -1,0 +1,59 @@
+#pragma once
+/// @file The assembled first-order nonlocal gradient G and its transpose (THEORY sec. 2-3).
+#include <cstddef>
+#include <vector>
+
+#include "perinom/core/types.hpp"
+#include "perinom/geometry/point_cloud.hpp"
+#include "perinom/neighbors/families.hpp"
+#include "perinom/operators/bond_weights.hpp"
+
+namespace perinom {
+
+/// G_b (b = 1..d), N x N: (G_b)_ij = g_ij[b] for j in H_i, (G_b)_ii = -sum_j g_ij[b],
+/// with g_ij = w_ij V_j K_i^-1 xi_ij. Stored block-sparse: one column index and d values
+/// per bond, plus the diagonal; the transpose is stored the same way (rows = dual-support),
+/// so both products are gathers and threads never write to the same row. Both products
+/// are deterministic: each row is summed in a fixed order by one thread.
+class GradientOperator {
+ public:
+  GradientOperator() = default;
+  /// Assembles G from the families and their bond weights.
+  GradientOperator(const PointCloud& cloud, const Families& families, const BondWeights& weights);
+
+  int dim() const { return dim_; }
+  std::size_t rows() const { return offsets_.size() - 1; }
+  std::size_t bonds() const { return cols_.size(); }
+
+  /// out = grad f: f holds N x nc values (point-major); out holds N x nc x d,
+  /// out[(i*nc + c)*d + b] = sum_j (f_j[c] - f_i[c]) g_ij[b].
+  void apply(const double* f, int nc, double* out) const;
+
+  /// out[i*nc + c] = sum_b (G_b^T q[:, c, b])_i, q holding N x nc x d values.
+  /// For nc = d and q = V.P this is the weak-form internal force (THEORY sec. 3).
+  void apply_transpose(const double* q, int nc, double* out) const;
+
+  /// Bytes held by the operator (both orientations).
+  std::size_t memory_bytes() const;
+
+  // Raw access, for assembling tangents and the stabilization from the same weights.
+  const std::vector<Offset>& offsets() const { return offsets_; }
+  const std::vector<ParticleId>& cols() const { return cols_; }
+  const double* weight(Offset k) const { return w_.data() + k * dim_; }
+  const double* diagonal(std::size_t i) const { return diag_.data() + i * dim_; }
+  const std::vector<Offset>& dual_offsets() const { return t_offsets_; }
+  const std::vector<ParticleId>& dual_cols() const { return t_cols_; }
+  /// g_mi for the k-th dual-support entry (m = dual_cols()[k]) of row i.
+  const double* dual_weight(Offset k) const { return t_w_.data() + k * dim_; }
+
+ private:
+  int dim_ = 0;
+  std::vector<Offset> offsets_{0};
+  std::vector<ParticleId> cols_;
+  std::vector<double> w_, diag_;
+  std::vector<Offset> t_offsets_{0};
+  std::vector<ParticleId> t_cols_;
+  std::vector<double> t_w_;
+};
+
+}  // namespace perinom

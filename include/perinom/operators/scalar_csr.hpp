@@ -1,0 +1,25 @@
+#pragma once
+/// @file A scalar sparse matrix in CSR form, applied to every component of a vector field.
+#include <cstddef>
+#include <vector>
+
+#include "perinom/core/types.hpp"
+
+namespace perinom {
+
+/// N x N scalar matrix A, used as A (x) I_nc on fields of nc components per particle.
+struct ScalarCsr {
+  std::vector<Offset> offsets{0};
+  std::vector<ParticleId> cols;  ///< sorted within each row
+  std::vector<double> values;
+
+  std::size_t rows() const { return offsets.size() - 1; }
+  std::size_t nonzeros() const { return cols.size(); }
+  std::size_t memory_bytes() const;
+  /// out[i*nc + c] += sum_j A_ij u[j*nc + c] (a gather; deterministic).
+  void apply_add(const double* u, int nc, double* out) const;
+  /// A_ij, or 0 if (i, j) is not stored.
+  double at(std::size_t i, std::size_t j) const;
+};
+
+}  // namespace perinom

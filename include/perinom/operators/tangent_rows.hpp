@@ -1,0 +1,37 @@
+#pragma once
+/// @file Block rows of the stiffness K = G^T (V . C) G + S0 (x) I (THEORY sec. 3-4).
+#include <functional>
+#include <vector>
+
+#include "perinom/core/types.hpp"
+#include "perinom/operators/gradient_operator.hpp"
+#include "perinom/operators/scalar_csr.hpp"
+
+namespace perinom {
+
+/// The pointwise tangent: C_m = dP/dF at particle m as d^4 values C[((a*d + b)*d + c)*d + e]
+/// = dP_ab / dF_ce, times V_m. stride is 0 when every particle shares one C (then only
+/// the volumes differ), d^4 otherwise.
+struct PointwiseTangent {
+  const double* C = nullptr;
+  std::size_t stride = 0;
+  const double* volume = nullptr;
+};
+
+/// Visits every block row i of K: visit(i, cols, blocks), blocks holding one row-major
+/// d x d block per column (K_(i a),(j c) = blocks[k*d*d + a*d + c] for j = cols[k]).
+/// K_(i),(j) = sum_m V_m sum_(b,e) G_b[m][i] C_m[a b c e] G_e[m][j] over m in {i} + H'_i
+/// and j in {m} + H_m, plus S0_ij on the block diagonal. Rows are computed in parallel;
+/// visit is called concurrently from several threads with distinct i.
+/// Cost: sum over m in {i} + H'_i of |H_m| d^3 per row.
+void for_each_tangent_row(
+    const GradientOperator& G, const PointwiseTangent& tangent, const ScalarCsr* S,
+    const std::function<void(std::size_t, const std::vector<ParticleId>&,
+                             const std::vector<double>&)>& visit);
+
+/// Row sums of |K| per degree of freedom (N x d values): the Gershgorin bound used by ADR
+/// (its fictitious density) and by Verlet (its stable time step).
+std::vector<double> tangent_row_abs_sums(const GradientOperator& G, const PointwiseTangent& t,
+                                         const ScalarCsr* S);
+
+}  // namespace perinom

@@ -1,0 +1,90 @@
+#pragma once
+/// @file What a scene file asks for. Field names mirror the YAML keys
+/// (docs/scene-format.md documents them key by key); defaults are in-class.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "perinom/geometry/lattice.hpp"
+#include "perinom/geometry/region.hpp"
+#include "perinom/materials/linear_elastic.hpp"
+#include "perinom/operators/influence.hpp"
+
+namespace perinom {
+
+struct DiscretizationSpec {
+  double dx = 0.0;            ///< m
+  double horizon_ratio = 0.0; ///< delta = ratio * dx (radius families), or
+  int horizon_neighbors = 0;  ///< k nearest neighbours
+  Influence weight = Influence::inverse_square;
+  double jitter = 0.0;        ///< random offsets, fraction of the spacing
+  std::uint64_t seed = 1;
+};
+
+struct ModelSpec {
+  std::string type = "correspondence";
+  std::string formulation = "classical";
+  double stabilization = 0.5;  ///< C_hg
+};
+
+/// One boundary condition on a region. Each of the three may be given: components to
+/// fix (at zero, or at a prescribed ramped displacement), a traction vector, a pressure.
+struct BoundarySpec {
+  std::string where;  ///< "boundary[k]" for messages
+  Region region;
+  std::array<bool, 3> fix{false, false, false};
+  std::array<std::optional<double>, 3> displacement;  ///< m, at full load
+  std::optional<std::array<double, 3>> traction;      ///< Pa, on a side
+  std::optional<double> pressure;                     ///< Pa, positive pushes inward
+};
+
+struct SolverSpec {
+  std::string type = "adr";
+  double tolerance = 1e-8;
+  double displacement_tolerance = 1e-8;
+  std::int64_t max_iterations = 200000;
+  int load_steps = 1;
+  double dt = 0.0;  ///< Verlet: 0 picks the stable step times safety
+  double safety = 0.8;
+  std::int64_t steps = 1000;
+  double ramp_time = 0.0;
+  std::int64_t history_every = 10;
+};
+
+struct ProbeSpec {
+  std::string name;
+  bool is_line = false;
+  std::array<double, 3> point{0, 0, 0}, from{0, 0, 0}, to{0, 0, 0};
+  std::string field = "displacement";  ///< displacement | stress | von_mises
+  std::string component = "x";         ///< x|y|z, or xx|yy|zz|xy|yz|xz for stress
+};
+
+struct OutputSpec {
+  std::int64_t vtk_every = 0;  ///< VTK snapshots every this many iterations; 0: the final state only
+};
+
+struct Scene {
+  std::string source;  ///< file name, for messages
+  std::string name;
+  int dim = 2;
+  BoxGeometry geometry;
+  DiscretizationSpec discretization;
+  LinearElastic material;
+  ModelSpec model;
+  std::vector<BoundarySpec> boundary;
+  SolverSpec solver;
+  OutputSpec output;
+  std::vector<ProbeSpec> probes;
+};
+
+/// Reads and validates a scene file, after applying `--set dotted.key=value` overrides
+/// (list items by index: boundary.0.pressure=1e5). Throws InputError naming the key
+/// (and line) of the first problem found.
+Scene read_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+/// The same for a scene held in a string (source names it in messages).
+Scene parse_scene(const std::string& text, const std::string& source,
+                  const std::vector<std::string>& overrides = {});
+
+}  // namespace perinom

@@ -1,0 +1,39 @@
+#pragma once
+/// @file Adaptive dynamic relaxation (THEORY sec. 8; Kilic and Madenci 2010).
+#include <cstdint>
+
+#include "perinom/core/progress.hpp"
+#include "perinom/models/loading.hpp"
+#include "perinom/models/model.hpp"
+#include "perinom/solvers/history.hpp"
+
+namespace perinom {
+
+struct AdrOptions {
+  double tolerance = 1e-8;               ///< |R_free| / load norm
+  double displacement_tolerance = 1e-8;  ///< |u^(n+1) - u^n| / |u^(n+1)| (seed 000 eq. 33)
+  std::int64_t max_iterations = 200000;  ///< over all load steps
+  int load_steps = 1;                    ///< loads ramped linearly over this many steps
+  std::int64_t history_every = 10;       ///< a history row every this many iterations
+};
+
+struct SolveReport {
+  bool converged = false;
+  std::int64_t iterations = 0;
+  double residual = 0.0;             ///< final relative residual
+  double displacement_change = 0.0;  ///< final relative displacement increment
+  double stable_time_step = 0.0;     ///< Verlet only (s)
+  History history;
+};
+
+/// Solves f_int(u) = s * f_ext with u = s * u_bar on the constrained dofs, for
+/// s = 1/n, 2/n, ..., 1. Fictitious density lambda_ii = 1/4 sum_j |K_ij| (dt = 1) from the
+/// model's exact row sums; adaptive damping from the local Rayleigh quotient.
+/// The load norm is the larger of |f_ext| and the norm of the reactions at the constrained
+/// dofs, so displacement-driven scenes are measured too.
+/// Throws SolveError on NaN or Inf, leaving in u the last state whose force was finite.
+SolveReport solve_adr(Model& model, const Loading& loading, const AdrOptions& options,
+                      std::vector<double>& u, Progress* progress = nullptr,
+                      const Observer& observe = {});
+
+}  // namespace perinom

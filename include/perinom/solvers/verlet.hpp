@@ -1,0 +1,31 @@
+#pragma once
+/// @file Velocity Verlet for dynamics (THEORY sec. 8; seed 002 eq. 99-100).
+#include <cstdint>
+
+#include "perinom/core/progress.hpp"
+#include "perinom/models/loading.hpp"
+#include "perinom/models/model.hpp"
+#include "perinom/solvers/adr.hpp"
+
+namespace perinom {
+
+struct VerletOptions {
+  double dt = 0.0;              ///< time step (s); 0 picks safety * the stable step
+  double safety = 0.8;          ///< fraction of the stable step when dt = 0
+  std::int64_t steps = 1000;
+  double ramp_time = 0.0;       ///< loads ramp linearly to full over this time (s); 0: at once
+  std::int64_t history_every = 10;
+};
+
+/// The stable step 2 / omega_max, with omega_max^2 bounded by max_i sum_j |K_ij| / m_i
+/// (Gershgorin on M^-1 K with the model's exact row sums).
+double stable_time_step(const Model& model);
+
+/// Integrates M u'' = s(t) f_ext - f_int(u) from the given u, v (constrained dofs follow
+/// s(t) u_bar). The history records time, kinetic, strain and external-work energies.
+/// Throws SolveError on NaN or Inf, leaving in u the last state whose force was finite.
+SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptions& options,
+                         std::vector<double>& u, std::vector<double>& v,
+                         Progress* progress = nullptr, const Observer& observe = {});
+
+}  // namespace perinom

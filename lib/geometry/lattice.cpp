@@ -1,0 +1,55 @@
+#include "perinom/geometry/lattice.hpp"
+
+#include <cmath>
+#include <random>
+
+#include "perinom/core/error.hpp"
+
+namespace perinom {
+
+bool Hole::contains(const double* p, int dim) const {
+  double r2 = 0.0;
+  for (int a = 0; a < dim; ++a) {
+    if (shape == Shape::cylinder && a == axis) continue;
+    const double d = p[a] - center[a];
+    r2 += d * d;
+  }
+  return r2 < radius * radius;
+}
+
+PointCloud make_lattice(const BoxGeometry& box, double dx, double jitter, std::uint64_t seed) {
+  const int d = box.dim;
+  std::array<long, 3> n{1, 1, 1};
+  PointCloud cloud;
+  cloud.dim = d;
+  cloud.dx = dx;
+  cloud.spacing.assign(d, dx);
+  double cell_volume = (d == 2) ? box.thickness : 1.0;
+  for (int a = 0; a < d; ++a) {
+    const double length = box.max[a] - box.min[a];
+    n[a] = std::max(1L, std::lround(length / dx));
+    cloud.spacing[a] = length / n[a];
+    cell_volume *= cloud.spacing[a];
+  }
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> offset(-0.5, 0.5);
+  const long nz = (d == 3) ? n[2] : 1;
+  for (long k = 0; k < nz; ++k)
+    for (long j = 0; j < n[1]; ++j)
+      for (long i = 0; i < n[0]; ++i) {
+        const long idx[3] = {i, j, k};
+        double p[3];
+        for (int a = 0; a < d; ++a) p[a] = box.min[a] + (idx[a] + 0.5) * cloud.spacing[a];
+        bool inside_hole = false;
+        for (const auto& h : box.holes) inside_hole = inside_hole || h.contains(p, d);
+        if (inside_hole) continue;
+        if (jitter > 0.0)
+          for (int a = 0; a < d; ++a) p[a] += jitter * cloud.spacing[a] * offset(rng);
+        cloud.x.insert(cloud.x.end(), p, p + d);
+        cloud.volume.push_back(cell_volume);
+      }
+  if (cloud.size() == 0) throw InputError("geometry: the box minus its holes holds no particle");
+  return cloud;
+}
+
+}  // namespace perinom

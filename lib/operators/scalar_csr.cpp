@@ -1,0 +1,48 @@
+#include "perinom/operators/scalar_csr.hpp"
+
+#include <algorithm>
+
+namespace perinom {
+namespace {
+
+template <int NC>
+void gather(const ScalarCsr& a, const double* u, double* out) {
+  const std::size_t n = a.rows();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    double acc[NC] = {};
+    for (Offset k = a.offsets[i]; k < a.offsets[i + 1]; ++k) {
+      const double* uj = u + static_cast<std::size_t>(a.cols[k]) * NC;
+      for (int c = 0; c < NC; ++c) acc[c] += a.values[k] * uj[c];
+    }
+    for (int c = 0; c < NC; ++c) out[i * NC + c] += acc[c];
+  }
+}
+
+}  // namespace
+
+std::size_t ScalarCsr::memory_bytes() const {
+  return offsets.size() * sizeof(Offset) + cols.size() * sizeof(ParticleId) +
+         values.size() * sizeof(double);
+}
+
+void ScalarCsr::apply_add(const double* u, int nc, double* out) const {
+  switch (nc) {
+    case 1: return gather<1>(*this, u, out);
+    case 2: return gather<2>(*this, u, out);
+    case 3: return gather<3>(*this, u, out);
+    default:
+      for (int c = 0; c < nc; ++c)
+        for (std::size_t i = 0; i < rows(); ++i)
+          for (Offset k = offsets[i]; k < offsets[i + 1]; ++k)
+            out[i * nc + c] += values[k] * u[static_cast<std::size_t>(cols[k]) * nc + c];
+  }
+}
+
+double ScalarCsr::at(std::size_t i, std::size_t j) const {
+  const auto first = cols.begin() + offsets[i], last = cols.begin() + offsets[i + 1];
+  const auto it = std::lower_bound(first, last, static_cast<ParticleId>(j));
+  return (it != last && *it == static_cast<ParticleId>(j)) ? values[it - cols.begin()] : 0.0;
+}
+
+}  // namespace perinom

@@ -1,0 +1,79 @@
+#include "perinom/operators/tangent_rows.hpp"
+
+#include <cmath>
+
+#include "perinom/operators/row_accumulator.hpp"
+
+namespace perinom {
+
+void for_each_tangent_row(
+    const GradientOperator& G, const PointwiseTangent& tangent, const ScalarCsr* S,
+    const std::function<void(std::size_t, const std::vector<ParticleId>&,
+                             const std::vector<double>&)>& visit) {
+  const int d = G.dim(), d2 = d * d, d3 = d2 * d;
+  const std::size_t n = G.rows();
+  const auto& off = G.offsets();
+  const auto& cols = G.cols();
+  const auto& toff = G.dual_offsets();
+  const auto& tcols = G.dual_cols();
+#pragma omp parallel
+  {
+    RowAccumulator acc(n, d2);
+    std::vector<double> T(d3), blocks;
+    // Adds V_m G[m][i] C_m G[m][j] for j in {m} + H_m, given gmi = G[.][m][i].
+    auto add_source = [&](std::size_t m, const double* gmi) {
+      const double* C = tangent.C + tangent.stride * m;
+      // T[a][c][e] = V_m sum_b gmi[b] C[a][b][c][e]
+      for (int a = 0; a < d; ++a)
+        for (int c = 0; c < d; ++c)
+          for (int e = 0; e < d; ++e) {
+            double s = 0.0;
+            for (int b = 0; b < d; ++b) s += gmi[b] * C[((a * d + b) * d + c) * d + e];
+            T[(a * d + c) * d + e] = tangent.volume[m] * s;
+          }
+      auto add_column = [&](ParticleId j, const double* gmj) {
+        double* K = acc.at(j);
+        for (int ac = 0; ac < d2; ++ac) {
+          double s = 0.0;
+          for (int e = 0; e < d; ++e) s += T[ac * d + e] * gmj[e];
+          K[ac] += s;
+        }
+      };
+      add_column(static_cast<ParticleId>(m), G.diagonal(m));
+      for (Offset k = off[m]; k < off[m + 1]; ++k) add_column(cols[k], G.weight(k));
+    };
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t i = 0; i < n; ++i) {
+      add_source(i, G.diagonal(i));
+      for (Offset t = toff[i]; t < toff[i + 1]; ++t) add_source(tcols[t], G.dual_weight(t));
+      if (S)
+        for (Offset k = S->offsets[i]; k < S->offsets[i + 1]; ++k) {
+          double* K = acc.at(S->cols[k]);
+          for (int a = 0; a < d; ++a) K[a * d + a] += S->values[k];
+        }
+      acc.finish();
+      blocks.resize(acc.cols().size() * d2);
+      for (std::size_t k = 0; k < acc.cols().size(); ++k)
+        for (int ac = 0; ac < d2; ++ac) blocks[k * d2 + ac] = acc.block(k)[ac];
+      visit(i, acc.cols(), blocks);
+      acc.clear();
+    }
+  }
+}
+
+std::vector<double> tangent_row_abs_sums(const GradientOperator& G, const PointwiseTangent& t,
+                                         const ScalarCsr* S) {
+  const int d = G.dim();
+  std::vector<double> sums(G.rows() * d, 0.0);
+  for_each_tangent_row(G, t, S,
+                       [&](std::size_t i, const std::vector<ParticleId>& cols,
+                           const std::vector<double>& blocks) {
+                         for (std::size_t k = 0; k < cols.size(); ++k)
+                           for (int a = 0; a < d; ++a)
+                             for (int c = 0; c < d; ++c)
+                               sums[i * d + a] += std::abs(blocks[(k * d + a) * d + c]);
+                       });
+  return sums;
+}
+
+}  // namespace perinom

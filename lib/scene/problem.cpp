@@ -1,0 +1,107 @@
+#include "perinom/scene/problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "perinom/core/error.hpp"
+#include "perinom/neighbors/search.hpp"
+
+namespace perinom {
+namespace {
+
+Loading make_loading(const Scene& s, const PointCloud& cloud) {
+  const int d = s.dim;
+  Loading load;
+  for (const auto& b : s.boundary) {
+    const auto ids = select(b.region, s.geometry, cloud);
+    if (ids.empty()) throw InputError(s.source + ": " + b.where + ".region: selects no particle");
+    for (int a = 0; a < d; ++a) {
+      if (!b.fix[a] && !b.displacement[a]) continue;
+      for (const auto i : ids) load.fix(static_cast<std::int64_t>(i) * d + a, b.displacement[a].value_or(0.0));
+    }
+    if (!b.traction && !b.pressure) continue;
+    // Classical treatment: the traction acts as a body force on the outer layer
+    // (force = t * V_i / layer thickness).
+    std::array<double, 3> t{0, 0, 0};
+    const auto n = outward_normal(b.region.side);
+    for (int a = 0; a < d; ++a) {
+      if (b.traction) t[a] += (*b.traction)[a];
+      if (b.pressure) t[a] -= *b.pressure * n[a];
+    }
+    if (load.force.empty()) load.force.assign(cloud.size() * d, 0.0);
+    const double h = cloud.spacing[b.region.side.axis];
+    for (const auto i : ids)
+      for (int a = 0; a < d; ++a) load.force[i * d + a] += t[a] * cloud.volume[i] / h;
+  }
+  return load;
+}
+
+BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud, const std::string& source) {
+  const int d = cloud.dim;
+  BoundProbe b{p, {}, {}};
+  if (!p.is_line) {
+    double best = INFINITY;
+    std::size_t arg = 0;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      double r2 = 0.0;
+      for (int a = 0; a < d; ++a) r2 += std::pow(cloud.x[i * d + a] - p.point[a], 2);
+      if (r2 < best) best = r2, arg = i;
+    }
+    b.particles.push_back(static_cast<ParticleId>(arg));
+    return b;
+  }
+  double len2 = 0.0;
+  for (int a = 0; a < d; ++a) len2 += std::pow(p.to[a] - p.from[a], 2);
+  if (!(len2 > 0.0)) throw InputError(source + ": probe '" + p.name + "': line.from equals line.to");
+  const double half = 0.5 * *std::max_element(cloud.spacing.begin(), cloud.spacing.end());
+  std::vector<std::pair<double, ParticleId>> hits;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    double t = 0.0;
+    for (int a = 0; a < d; ++a) t += (cloud.x[i * d + a] - p.from[a]) * (p.to[a] - p.from[a]);
+    t = std::clamp(t / len2, 0.0, 1.0);
+    double r2 = 0.0;
+    for (int a = 0; a < d; ++a)
+      r2 += std::pow(cloud.x[i * d + a] - (p.from[a] + t * (p.to[a] - p.from[a])), 2);
+    if (r2 <= half * half * (1.0 + 1e-9)) hits.emplace_back(t * std::sqrt(len2), static_cast<ParticleId>(i));
+  }
+  if (hits.empty()) throw InputError(source + ": probe '" + p.name + "': the line meets no particle");
+  std::sort(hits.begin(), hits.end());
+  for (const auto& h : hits) {
+    b.along.push_back(h.first);
+    b.particles.push_back(h.second);
+  }
+  return b;
+}
+
+}  // namespace
+
+Problem build_problem(const Scene& s, PhaseTimer* timer) {
+  Problem p;
+  p.scene = s;
+  if (timer) timer->start("discretization");
+  p.cloud = make_lattice(s.geometry, s.discretization.dx, s.discretization.jitter, s.discretization.seed);
+  Families families = s.discretization.horizon_neighbors > 0
+                          ? knn_families(p.cloud, s.discretization.horizon_neighbors)
+                          : radius_families(p.cloud, s.discretization.horizon_ratio * s.discretization.dx);
+  p.bonds = families.bonds();
+  p.loading = make_loading(s, p.cloud);
+  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud, s.source));
+  if (timer) timer->start("operators");
+  CorrespondenceOptions opt;
+  opt.influence = s.discretization.weight;
+  opt.stabilization = s.model.stabilization;
+  p.model = std::make_unique<CorrespondenceModel>(p.cloud, families, s.material, opt);
+  if (timer) timer->stop();
+  return p;
+}
+
+double probe_value(const ProbeSpec& spec, int dim, std::size_t i, const std::vector<double>& u,
+                   const std::vector<double>& sigma) {
+  const auto axis = [](char c) { return c == 'x' ? 0 : c == 'y' ? 1 : 2; };
+  if (spec.field == "displacement") return u[i * dim + axis(spec.component[0])];
+  if (spec.field == "stress") return sigma[i * 9 + axis(spec.component[0]) * 3 + axis(spec.component[1])];
+  return von_mises(sigma.data() + i * 9);
+}
+
+}  // namespace perinom

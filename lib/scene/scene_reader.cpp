@@ -1,0 +1,271 @@
+// Reads a scene file into a Scene, strictly: unknown keys, wrong types, missing keys and
+// values out of range all end in an InputError that names the key and its line.
+#include <fstream>
+#include <sstream>
+
+#include "perinom/core/error.hpp"
+#include "perinom/scene/scene.hpp"
+#include "yaml_fields.hpp"
+
+namespace perinom {
+namespace {
+
+using detail::Fields;
+
+int axis_of(const std::string& c, int dim) {
+  const int a = (c == "x") ? 0 : (c == "y") ? 1 : (c == "z") ? 2 : -1;
+  return a < dim ? a : -1;
+}
+
+void read_geometry(Fields f, Scene& s) {
+  auto& g = s.geometry;
+  g.dim = s.dim;
+  Fields box = f.map("box");
+  const auto lo = box.vector("min", s.dim), hi = box.vector("max", s.dim);
+  box.finish();
+  for (int a = 0; a < s.dim; ++a)
+    if (!(hi[a] > lo[a])) f.fail("box", "max must exceed min on every axis (empty geometry)");
+  g.min = lo;
+  g.max = hi;
+  g.thickness = f.number("thickness", 1.0);
+  if (!(g.thickness > 0.0)) f.fail("thickness", "must be positive");
+  const auto holes = f.list("holes");
+  for (std::size_t k = 0; k < holes.size(); ++k) {
+    Fields h(holes[k], f.key("holes[" + std::to_string(k) + "]"), f.source());
+    Hole hole;
+    const std::string shape = h.text("shape", s.dim == 2 ? "circle" : "sphere");
+    if (s.dim == 2 && shape == "circle") hole.shape = Hole::Shape::circle;
+    else if (s.dim == 3 && shape == "sphere") hole.shape = Hole::Shape::sphere;
+    else if (s.dim == 3 && shape == "cylinder") hole.shape = Hole::Shape::cylinder;
+    else h.fail("shape", "must be circle (2-D), sphere or cylinder (3-D)");
+    hole.center = h.vector("center", s.dim);
+    hole.radius = h.number("radius");
+    if (!(hole.radius > 0.0)) h.fail("radius", "must be positive");
+    if (hole.shape == Hole::Shape::cylinder) {
+      hole.axis = axis_of(h.text("axis", "z"), 3);
+      if (hole.axis < 0) h.fail("axis", "must be x, y or z");
+    }
+    h.finish();
+    g.holes.push_back(hole);
+  }
+  f.finish();
+}
+
+void read_discretization(Fields f, Scene& s) {
+  auto& d = s.discretization;
+  d.dx = f.number("dx");
+  if (!(d.dx > 0.0)) f.fail("dx", "must be positive");
+  Fields h = f.map("horizon");
+  if (h.has("ratio") == h.has("neighbors"))
+    f.fail("horizon", "give exactly one of ratio (delta = ratio * dx) or neighbors (k nearest)");
+  if (h.has("ratio")) {
+    d.horizon_ratio = h.number("ratio");
+    if (!(d.horizon_ratio > 0.0)) h.fail("ratio", "must be positive");
+  } else {
+    const auto k = h.integer("neighbors");
+    if (k < s.dim) h.fail("neighbors", "must be at least the dimension");
+    d.horizon_neighbors = static_cast<int>(k);
+  }
+  h.finish();
+  if (!parse_influence(f.text("weight", "inverse_square"), d.weight))
+    f.fail("weight", "must be constant, inverse_distance, inverse_square or gaussian");
+  d.jitter = f.number("jitter", 0.0);
+  if (d.jitter < 0.0 || d.jitter >= 1.0) f.fail("jitter", "must lie in [0, 1)");
+  d.seed = static_cast<std::uint64_t>(f.integer("seed", 1));
+  f.finish();
+}
+
+void read_material(Fields f, Scene& s) {
+  auto& m = s.material;
+  m.dim = s.dim;
+  if (f.text("type") != "linear_elastic") f.fail("type", "unknown material type (known: linear_elastic)");
+  m.E = f.number("E");
+  if (!(m.E > 0.0)) f.fail("E", "must be positive");
+  m.nu = f.number("nu");
+  if (!(m.nu > -1.0 && m.nu < 0.5)) f.fail("nu", "must lie in (-1, 0.5)");
+  m.density = f.number("density");
+  if (!(m.density > 0.0)) f.fail("density", "must be positive");
+  if (s.dim == 2) {
+    const std::string plane = f.text("plane", "strain");
+    if (plane == "strain") m.plane = PlaneCondition::strain;
+    else if (plane == "stress") m.plane = PlaneCondition::stress;
+    else f.fail("plane", "must be strain or stress");
+  } else if (f.has("plane")) {
+    f.fail("plane", "only 2-D scenes have a plane condition");
+  }
+  f.finish();
+}
+
+void read_model(Fields f, Scene& s) {
+  s.model.type = f.text("type", "correspondence");
+  if (s.model.type != "correspondence") f.fail("type", "unknown model type (known: correspondence)");
+  s.model.formulation = f.text("formulation", "classical");
+  if (s.model.formulation != "classical")
+    f.fail("formulation", "unknown formulation (known: classical; improved is not implemented yet)");
+  s.model.stabilization = f.number("stabilization", 0.5);
+  if (s.model.stabilization < 0.0) f.fail("stabilization", "must be zero or positive");
+  f.finish();
+}
+
+Region read_region(Fields& f, const Scene& s) {
+  Region r;
+  const YAML::Node n = f.node("region");
+  f.mark("region");
+  if (!n.IsDefined() || n.IsNull()) f.fail("region", "required key is missing");
+  if (n.IsScalar()) {
+    r.is_side = true;
+    if (!parse_side(n.as<std::string>(), s.dim, r.side))
+      f.fail("region", "unknown side '" + n.as<std::string>() +
+                           "' (left, right, bottom, top" + (s.dim == 3 ? ", front, back" : "") +
+                           ", or xmin ... zmax)");
+    return r;
+  }
+  Fields rf(n, f.key("region"), f.source());
+  Fields box = rf.map("box");
+  r.is_side = false;
+  r.min = box.vector("min", s.dim);
+  r.max = box.vector("max", s.dim);
+  box.finish();
+  rf.finish();
+  return r;
+}
+
+void read_boundary(const std::vector<YAML::Node>& items, const std::string& source, Scene& s) {
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    Fields f(items[k], "boundary[" + std::to_string(k) + "]", source);
+    BoundarySpec b;
+    b.where = "boundary[" + std::to_string(k) + "]";
+    b.region = read_region(f, s);
+    for (const auto& c : f.list("fix")) {
+      const int a = c.IsScalar() ? axis_of(c.as<std::string>(), s.dim) : -1;
+      if (a < 0) f.fail("fix", "components must be among x, y" + std::string(s.dim == 3 ? ", z" : ""));
+      b.fix[a] = true;
+    }
+    if (f.has("displacement")) {
+      Fields d = f.map("displacement");
+      for (const char* c : {"x", "y", "z"}) {
+        const int a = axis_of(c, s.dim);
+        if (a >= 0 && d.has(c)) b.displacement[a] = d.number(c);
+      }
+      d.finish();
+    }
+    if (f.has("traction")) b.traction = f.vector("traction", s.dim);
+    if (f.has("pressure")) b.pressure = f.number("pressure");
+    if ((b.traction || b.pressure) && !b.region.is_side)
+      f.fail("region", "a traction or pressure acts on a side of the box (top, left, ...)");
+    f.finish();
+    s.boundary.push_back(b);
+  }
+}
+
+void read_solver(Fields f, Scene& s) {
+  auto& v = s.solver;
+  v.type = f.text("type", "adr");
+  if (v.type != "adr" && v.type != "verlet") f.fail("type", "must be adr or verlet");
+  v.tolerance = f.number("tolerance", v.tolerance);
+  if (!(v.tolerance > 0.0)) f.fail("tolerance", "must be positive");
+  v.displacement_tolerance = f.number("displacement_tolerance", v.displacement_tolerance);
+  if (!(v.displacement_tolerance > 0.0)) f.fail("displacement_tolerance", "must be positive");
+  v.max_iterations = f.integer("max_iterations", v.max_iterations);
+  if (v.max_iterations < 1) f.fail("max_iterations", "must be at least 1");
+  v.load_steps = static_cast<int>(f.integer("load_steps", v.load_steps));
+  if (v.load_steps < 1) f.fail("load_steps", "must be at least 1");
+  v.dt = f.number("dt", v.dt);
+  if (v.dt < 0.0) f.fail("dt", "must be positive (or 0 for the stable step)");
+  v.safety = f.number("safety", v.safety);
+  if (!(v.safety > 0.0 && v.safety <= 1.0)) f.fail("safety", "must lie in (0, 1]");
+  v.steps = f.integer("steps", v.steps);
+  if (v.steps < 1) f.fail("steps", "must be at least 1");
+  v.ramp_time = f.number("ramp_time", v.ramp_time);
+  if (v.ramp_time < 0.0) f.fail("ramp_time", "must be zero or positive");
+  v.history_every = f.integer("history_every", v.history_every);
+  if (v.history_every < 1) f.fail("history_every", "must be at least 1");
+  f.finish();
+}
+
+void read_probes(const std::vector<YAML::Node>& items, const std::string& source, Scene& s) {
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    Fields f(items[k], "probes[" + std::to_string(k) + "]", source);
+    ProbeSpec p;
+    p.name = f.text("name");
+    for (const auto& q : s.probes)
+      if (q.name == p.name) f.fail("name", "another probe is already named '" + p.name + "'");
+    p.is_line = f.has("line");
+    if (p.is_line == f.has("point")) f.fail("name", "a probe has exactly one of point or line");
+    if (p.is_line) {
+      Fields l = f.map("line");
+      p.from = l.vector("from", s.dim);
+      p.to = l.vector("to", s.dim);
+      l.finish();
+    } else {
+      p.point = f.vector("point", s.dim);
+    }
+    p.field = f.text("field", "displacement");
+    if (p.field == "displacement") {
+      p.component = f.text("component", p.is_line ? "x" : "");
+      if (axis_of(p.component, s.dim) < 0) f.fail("component", "must be x, y" + std::string(s.dim == 3 ? " or z" : ""));
+    } else if (p.field == "stress") {
+      p.component = f.text("component");
+      const std::string ok = "xx yy zz xy yz xz";
+      if (p.component.size() != 2 || ok.find(p.component) == std::string::npos)
+        f.fail("component", "must be xx, yy, zz, xy, yz or xz");
+    } else if (p.field == "von_mises") {
+      f.mark("component");
+    } else {
+      f.fail("field", "must be displacement, stress or von_mises");
+    }
+    f.finish();
+    s.probes.push_back(p);
+  }
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& source,
+                  const std::vector<std::string>& overrides) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(source + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw InputError(source + ": a scene is a mapping of keys to values");
+  for (const auto& o : overrides) detail::apply_override(root, o);
+  Scene s;
+  s.source = source;
+  Fields top(root, "", source);
+  s.name = top.text("name");
+  if (s.name.empty() || s.name.find_first_of("/\\") != std::string::npos)
+    top.fail("name", "must be a non-empty name without slashes (it names output files)");
+  s.dim = static_cast<int>(top.integer("dimension"));
+  if (s.dim != 2 && s.dim != 3) top.fail("dimension", "must be 2 or 3");
+  read_geometry(top.map("geometry"), s);
+  read_discretization(top.map("discretization"), s);
+  read_material(top.map("material"), s);
+  if (top.has("model")) read_model(top.map("model"), s);
+  else top.mark("model");
+  read_boundary(top.list("boundary"), source, s);
+  if (top.has("solver")) read_solver(top.map("solver"), s);
+  else top.mark("solver");
+  if (top.has("output")) {
+    Fields o = top.map("output");
+    s.output.vtk_every = o.integer("vtk_every", 0);
+    if (s.output.vtk_every < 0) o.fail("vtk_every", "must be zero or positive");
+    o.finish();
+  } else {
+    top.mark("output");
+  }
+  read_probes(top.list("probes"), source, s);
+  top.finish();
+  return s;
+}
+
+Scene read_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open the scene file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_scene(buffer.str(), path, overrides);
+}
+
+}  // namespace perinom

@@ -1,0 +1,151 @@
+#include "yaml_fields.hpp"
+
+#include <cmath>
+
+#include "perinom/core/error.hpp"
+
+namespace perinom::detail {
+
+std::string where(const std::string& source, const YAML::Node& node) {
+  const auto m = node.Mark();
+  if (m.line < 0) return source + ": ";
+  return source + ":" + std::to_string(m.line + 1) + ": ";
+}
+
+Fields::Fields(const YAML::Node& node, std::string path, std::string source)
+    : node_(node), path_(std::move(path)), source_(std::move(source)) {
+  if (!node_.IsMap())
+    throw InputError(where(source_, node_) + (path_.empty() ? "scene" : path_) +
+                     ": must be a mapping of keys to values");
+}
+
+bool Fields::has(const std::string& k) const { return node_[k].IsDefined() && !node_[k].IsNull(); }
+
+void Fields::fail(const std::string& k, const std::string& what) const {
+  const YAML::Node n = node_[k];
+  throw InputError(where(source_, n.IsDefined() ? n : node_) + key(k) + ": " + what);
+}
+
+YAML::Node Fields::get(const std::string& k, bool required) {
+  used_.insert(k);
+  const YAML::Node n = node_[k];
+  if (required && (!n.IsDefined() || n.IsNull())) fail(k, "required key is missing");
+  return n;
+}
+
+double Fields::number(const std::string& k) {
+  const YAML::Node n = get(k, true);
+  try {
+    if (!n.IsScalar()) throw YAML::Exception(n.Mark(), "");
+    const double v = n.as<double>();
+    if (!std::isfinite(v)) fail(k, "must be a finite number");
+    return v;
+  } catch (const YAML::Exception&) {
+    fail(k, "must be a number");
+  }
+}
+
+double Fields::number(const std::string& k, double fallback) {
+  return has(k) ? number(k) : (used_.insert(k), fallback);
+}
+
+std::int64_t Fields::integer(const std::string& k) {
+  const YAML::Node n = get(k, true);
+  try {
+    if (!n.IsScalar()) throw YAML::Exception(n.Mark(), "");
+    return n.as<std::int64_t>();
+  } catch (const YAML::Exception&) {
+    fail(k, "must be a whole number");
+  }
+}
+
+std::int64_t Fields::integer(const std::string& k, std::int64_t fallback) {
+  return has(k) ? integer(k) : (used_.insert(k), fallback);
+}
+
+std::string Fields::text(const std::string& k) {
+  const YAML::Node n = get(k, true);
+  if (!n.IsScalar()) fail(k, "must be a string");
+  return n.as<std::string>();
+}
+
+std::string Fields::text(const std::string& k, const std::string& fallback) {
+  return has(k) ? text(k) : (used_.insert(k), fallback);
+}
+
+std::array<double, 3> Fields::vector(const std::string& k, int n) {
+  const YAML::Node v = get(k, true);
+  if (!v.IsSequence() || static_cast<int>(v.size()) != n)
+    fail(k, "must be a list of " + std::to_string(n) + " numbers");
+  std::array<double, 3> out{0, 0, 0};
+  for (int a = 0; a < n; ++a) {
+    try {
+      out[a] = v[a].as<double>();
+    } catch (const YAML::Exception&) {
+      fail(k, "must be a list of " + std::to_string(n) + " numbers");
+    }
+    if (!std::isfinite(out[a])) fail(k, "must hold finite numbers");
+  }
+  return out;
+}
+
+Fields Fields::map(const std::string& k) {
+  const YAML::Node n = get(k, true);
+  if (!n.IsMap()) fail(k, "must be a mapping of keys to values");
+  return Fields(n, key(k), source_);
+}
+
+std::vector<YAML::Node> Fields::list(const std::string& k) {
+  const YAML::Node n = get(k, false);
+  std::vector<YAML::Node> out;
+  if (!n.IsDefined() || n.IsNull()) return out;
+  if (!n.IsSequence()) fail(k, "must be a list");
+  for (const auto& item : n) out.push_back(item);
+  return out;
+}
+
+void Fields::finish() const {
+  for (const auto& kv : node_) {
+    const std::string k = kv.first.as<std::string>();
+    if (!used_.count(k))
+      throw InputError(where(source_, kv.first) + key(k) + ": unknown key");
+  }
+}
+
+void apply_override(YAML::Node& root, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--set " + assignment + ": expected dotted.key=value");
+  const std::string path = assignment.substr(0, eq);
+  YAML::Node value;
+  try {
+    value = YAML::Load(assignment.substr(eq + 1));
+  } catch (const YAML::Exception& e) {
+    throw InputError("--set " + path + ": the value is not valid YAML (" + e.msg + ")");
+  }
+  std::vector<std::string> parts;
+  for (std::size_t start = 0;;) {
+    const auto dot = path.find('.', start);
+    parts.push_back(path.substr(start, dot - start));
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  YAML::Node cur = root;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    const std::string& part = parts[p];
+    const bool index = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+    if (index && !cur.IsSequence())
+      throw InputError("--set " + path + ": '" + part + "' indexes something that is not a list");
+    if (index && std::stoul(part) >= cur.size())
+      throw InputError("--set " + path + ": list index " + part + " is out of range");
+    if (p + 1 == parts.size()) {
+      if (index) cur[std::stoul(part)] = value;
+      else cur[part] = value;
+    } else {
+      YAML::Node next = index ? cur[std::stoul(part)] : cur[part];
+      cur.reset(next);
+    }
+  }
+}
+
+}  // namespace perinom::detail

@@ -1,0 +1,102 @@
+#include "perinom/solvers/adr.hpp"
+
+#include <cmath>
+
+#include "perinom/core/error.hpp"
+#include "perinom/solvers/vector_ops.hpp"
+
+namespace perinom {
+
+SolveReport solve_adr(Model& model, const Loading& loading, const AdrOptions& opt,
+                      std::vector<double>& u, Progress* progress, const Observer& observe) {
+  const std::size_t n = model.dofs();
+  u.resize(n, 0.0);
+  std::vector<double> lambda = model.stiffness_row_sums();
+  for (auto& l : lambda) l = 0.25 * l;  // dt = 1
+  std::vector<double> v(n), f(n), f_old(n), fint(n), last_good(u);
+  SolveReport rep;
+  rep.history.columns = {"iteration", "load_factor", "residual", "displacement_change",
+                         "damping"};
+  ProgressSample sample;
+  sample.limit = opt.max_iterations;
+  sample.load_steps = opt.load_steps;
+  sample.target = opt.tolerance;
+
+  // Residual force F = s f_ext - f_int on the free dofs; returns the relative residual.
+  auto residual = [&](double s) {
+    model.internal_force(u.data(), fint.data());
+    double reaction2 = 0.0;
+    for (const auto dof : loading.fixed) reaction2 += fint[dof] * fint[dof];
+    for (std::size_t k = 0; k < n; ++k) f[k] = s * (loading.force.empty() ? 0.0 : loading.force[k]) - fint[k];
+    loading.zero_fixed(f.data());
+    const double fnorm = norm(f);
+    if (!std::isfinite(fnorm)) {
+      u = last_good;
+      throw SolveError("ADR: the internal force became NaN or Inf at iteration " +
+                       std::to_string(rep.iterations) + " (last finite state kept)");
+    }
+    const double load = std::max(s * (loading.force.empty() ? 0.0 : norm(loading.force)),
+                                 std::sqrt(reaction2));
+    return load > 0.0 ? fnorm / load : fnorm;
+  };
+
+  for (int step = 1; step <= opt.load_steps; ++step) {
+    const double s = static_cast<double>(step) / opt.load_steps;
+    loading.impose(s, u.data());
+    std::fill(v.begin(), v.end(), 0.0);
+    double r = residual(s), du = 1.0, c = 0.0;
+    bool first = true;
+    rep.converged = false;
+    sample.load_step = step;
+    while (rep.iterations < opt.max_iterations) {
+      // The seed's criterion (eq. 33) alone stops a solve that has barely moved; the
+      // residual criterion makes sure it is in equilibrium.
+      if (!first && r <= opt.tolerance && du <= opt.displacement_tolerance) {
+        rep.converged = true;
+        break;
+      }
+      if (first) {
+        for (std::size_t k = 0; k < n; ++k) v[k] = 0.5 * f[k] / lambda[k];
+      } else {
+        // Damping from the local diagonal stiffness (Rayleigh quotient over u).
+        double num = 0.0, den = 0.0;
+        for (std::size_t k = 0; k < n; ++k) {
+          den += u[k] * u[k];
+          if (v[k] != 0.0) num += u[k] * u[k] * (-(f[k] - f_old[k]) / (lambda[k] * v[k]));
+        }
+        c = (num > 0.0 && den > 0.0) ? 2.0 * std::sqrt(num / den) : 0.0;
+        c = std::min(c, 1.999);
+        for (std::size_t k = 0; k < n; ++k)
+          v[k] = ((2.0 - c) * v[k] + 2.0 * f[k] / lambda[k]) / (2.0 + c);
+      }
+      first = false;
+      loading.zero_fixed(v.data());
+      double du2 = 0.0;
+      for (std::size_t k = 0; k < n; ++k) {
+        u[k] += v[k];
+        du2 += v[k] * v[k];
+      }
+      const double un = norm(u);
+      du = un > 0.0 ? std::sqrt(du2) / un : std::sqrt(du2);
+      f_old.swap(f);
+      if (rep.iterations % 100 == 0) last_good = u;
+      r = residual(s);
+      ++rep.iterations;
+      if (rep.iterations % opt.history_every == 0)
+        rep.history.rows.push_back({double(rep.iterations), s, r, du, c});
+      observe(rep.iterations, s, u);
+      if (progress && rep.iterations % 50 == 0) {
+        sample.iteration = rep.iterations;
+        sample.residual = r;
+        progress->update(sample);
+      }
+    }
+    rep.residual = r;
+    rep.displacement_change = du;
+    if (!rep.converged) break;
+  }
+  if (progress) progress->finish();
+  return rep;
+}
+
+}  // namespace perinom

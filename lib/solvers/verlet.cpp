@@ -1,0 +1,87 @@
+#include "perinom/solvers/verlet.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "perinom/core/error.hpp"
+#include "perinom/solvers/vector_ops.hpp"
+
+namespace perinom {
+
+double stable_time_step(const Model& model) {
+  const auto rows = model.stiffness_row_sums();
+  const auto mass = model.lumped_mass();
+  double w2 = 0.0;
+  for (std::size_t k = 0; k < rows.size(); ++k) w2 = std::max(w2, rows[k] / mass[k]);
+  return 2.0 / std::sqrt(w2);
+}
+
+SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptions& opt,
+                         std::vector<double>& u, std::vector<double>& v, Progress* progress,
+                         const Observer& observe) {
+  const std::size_t n = model.dofs();
+  u.resize(n, 0.0);
+  v.resize(n, 0.0);
+  SolveReport rep;
+  rep.stable_time_step = stable_time_step(model);
+  const double dt = opt.dt > 0.0 ? opt.dt : opt.safety * rep.stable_time_step;
+  const auto mass = model.lumped_mass();
+  std::vector<double> a(n), fint(n), u_old(n), last_good(u);
+  rep.history.columns = {"step", "time", "kinetic_energy", "strain_energy", "external_work",
+                         "total_energy"};
+  auto factor = [&](double t) { return opt.ramp_time > 0.0 ? std::min(1.0, t / opt.ramp_time) : 1.0; };
+  double work = 0.0;  // external work, trapezoidal in time
+  auto accelerate = [&](double t) {
+    model.internal_force(u.data(), fint.data());
+    const double s = factor(t);
+    for (std::size_t k = 0; k < n; ++k)
+      a[k] = ((loading.force.empty() ? 0.0 : s * loading.force[k]) - fint[k]) / mass[k];
+    loading.zero_fixed(a.data());
+    if (!std::isfinite(norm(a))) {
+      u = last_good;
+      throw SolveError("Verlet: the internal force became NaN or Inf at step " +
+                       std::to_string(rep.iterations) + " (last finite state kept)");
+    }
+  };
+  auto record = [&](std::int64_t step, double t) {
+    double kin = 0.0;
+    for (std::size_t k = 0; k < n; ++k) kin += 0.5 * mass[k] * v[k] * v[k];
+    const double strain = model.energy(u.data());
+    rep.history.rows.push_back({double(step), t, kin, strain, work, kin + strain - work});
+  };
+  double t = 0.0;
+  loading.impose(factor(t), u.data());
+  accelerate(t);
+  record(0, t);
+  ProgressSample sample;
+  sample.limit = opt.steps;
+  for (std::int64_t step = 1; step <= opt.steps; ++step) {
+    for (std::size_t k = 0; k < n; ++k) {
+      v[k] += 0.5 * dt * a[k];
+      u_old[k] = u[k];
+      u[k] += dt * v[k];
+    }
+    t += dt;
+    loading.impose(factor(t), u.data());
+    const double s_mid = 0.5 * (factor(t) + factor(t - dt));
+    if (!loading.force.empty())
+      for (std::size_t k = 0; k < n; ++k) work += s_mid * loading.force[k] * (u[k] - u_old[k]);
+    accelerate(t);
+    for (std::size_t k = 0; k < n; ++k) v[k] += 0.5 * dt * a[k];
+    loading.zero_fixed(v.data());
+    rep.iterations = step;
+    if (step % 100 == 0) last_good = u;
+    if (step % opt.history_every == 0) record(step, t);
+    observe(step, t, u);
+    if (progress && step % 50 == 0) {
+      sample.iteration = step;
+      sample.time = t;
+      progress->update(sample);
+    }
+  }
+  rep.converged = true;
+  if (progress) progress->finish();
+  return rep;
+}
+
+}  // namespace perinom
