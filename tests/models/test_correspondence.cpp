@@ -1,0 +1,141 @@
+#include <catch2/catch.hpp>
+
+#include "../support/clouds.hpp"
+#include "perinom/models/correspondence.hpp"
+#include "perinom/neighbors/search.hpp"
+#include "perinom/operators/tangent_rows.hpp"
+
+using namespace perinom;
+
+namespace {
+
+LinearElastic material(int dim, PlaneCondition plane) {
+  LinearElastic m;
+  m.E = 30e6;
+  m.nu = 0.25;
+  m.density = 2000;
+  m.dim = dim;
+  m.plane = plane;
+  return m;
+}
+
+struct Case {
+  int dim;
+  PlaneCondition plane;
+  bool knn;
+};
+
+const Case cases[] = {{2, PlaneCondition::strain, false}, {2, PlaneCondition::stress, true},
+                      {3, PlaneCondition::none, false}, {3, PlaneCondition::none, true}};
+
+Families families(const PointCloud& c, bool knn) {
+  return knn ? knn_families(c, c.dim == 2 ? 12 : 30) : radius_families(c, 2.015);
+}
+
+}  // namespace
+
+TEST_CASE("the assembled force equals the bond loop of seed 000 eq. 16/19", "[models]") {
+  for (const Case& k : cases) {
+    const PointCloud c = test::lattice(k.dim, k.dim == 2 ? 9 : 5, 0.3);
+    const Families f = families(c, k.knn);
+    const LinearElastic mat = material(k.dim, k.plane);
+    CorrespondenceModel model(c, f, mat, {Influence::inverse_distance, 0.0});
+    const int d = k.dim, d2 = d * d;
+    const auto u = test::random_field(c.size() * d, 1e-4, 8);
+    std::vector<double> fint(u.size());
+    model.internal_force(u.data(), fint.data());
+
+    // Straight from the seed: K_i, F_i = I + sum_j (u_j - u_i) (x) w V_j K_i^-1 xi_ij,
+    // T_ij = w_ij P_i K_i^-1 xi_ij, L_i = sum_j (T_ij V_j - T_ji V_j) and f_int = -V L.
+    const BondWeights bw = bond_weights(c, f, Influence::inverse_distance);
+    std::vector<double> P(c.size() * d2);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const double* Ki = bw.shape_inverse.data() + i * d2;
+      double H[9] = {};
+      for (Offset b = f.begin(i); b < f.end(i); ++b) {
+        const std::size_t j = f.neighbors[b];
+        for (int a = 0; a < d; ++a)
+          for (int e = 0; e < d; ++e)
+            for (int g = 0; g < d; ++g)
+              H[a * d + e] += (u[j * d + a] - u[i * d + a]) * bw.wv[b] * Ki[e * d + g] * (c.x[j * d + g] - c.x[i * d + g]);
+      }
+      mat.stress(H, P.data() + i * d2);
+    }
+    std::vector<double> L(u.size(), 0.0);
+    for (std::size_t i = 0; i < c.size(); ++i)
+      for (Offset b = f.begin(i); b < f.end(i); ++b) {
+        const std::size_t j = f.neighbors[b];
+        // T_ij V_j acts on i; its reaction -T_ij V_i acts on j (the j-sum of eq. 16 over H'_j).
+        double t[3] = {};
+        const double* Ki = bw.shape_inverse.data() + i * d2;
+        for (int a = 0; a < d; ++a)
+          for (int e = 0; e < d; ++e)
+            for (int g = 0; g < d; ++g)
+              t[a] += bw.wv[b] / c.volume[j] * P[i * d2 + a * d + e] * Ki[e * d + g] * (c.x[j * d + g] - c.x[i * d + g]);
+        for (int a = 0; a < d; ++a) {
+          L[i * d + a] += t[a] * c.volume[j];
+          L[j * d + a] -= t[a] * c.volume[i];
+        }
+      }
+    double err = 0.0;
+    for (std::size_t k2 = 0; k2 < u.size(); ++k2) err = std::max(err, std::abs(fint[k2] + c.volume[k2 / d] * L[k2]));
+    INFO("dim " << d << (k.knn ? " knn" : " radius"));
+    CHECK(err <= 1e-12 * test::max_abs(fint));
+  }
+}
+
+TEST_CASE("the internal force is the derivative of the stored energy", "[models]") {
+  for (const Case& k : cases) {
+    const PointCloud c = test::lattice(k.dim, k.dim == 2 ? 8 : 4, 0.3);
+    CorrespondenceModel model(c, families(c, k.knn), material(k.dim, k.plane), {Influence::inverse_square, 0.5});
+    const auto u = test::random_field(model.dofs(), 1e-4, 2);
+    std::vector<double> f(u.size());
+    model.internal_force(u.data(), f.data());
+    for (int dir = 0; dir < 4; ++dir) {
+      const auto v = test::random_field(u.size(), 1.0, 100 + dir);
+      const double h = 1e-6;
+      auto up = u, um = u;
+      for (std::size_t m = 0; m < u.size(); ++m) up[m] += h * v[m], um[m] -= h * v[m];
+      const double fd = (model.energy(up.data()) - model.energy(um.data())) / (2 * h);
+      double fv = 0.0;
+      for (std::size_t m = 0; m < u.size(); ++m) fv += f[m] * v[m];
+      CHECK(fv == Approx(fd).epsilon(1e-7));
+    }
+  }
+}
+
+TEST_CASE("the assembled tangent rows equal the derivative of the force", "[models][operators]") {
+  for (const Case& k : cases) {
+    const PointCloud c = test::lattice(k.dim, k.dim == 2 ? 7 : 4, 0.3);
+    CorrespondenceModel model(c, families(c, k.knn), material(k.dim, k.plane), {Influence::inverse_square, 0.5});
+    const int d = k.dim;
+    const std::size_t n = model.dofs();
+    // The model is linear: column m of K is f(e_m).
+    std::vector<double> K(n * n), e(n, 0.0), col(n);
+    for (std::size_t m = 0; m < n; ++m) {
+      e[m] = 1.0;
+      model.internal_force(e.data(), col.data());
+      e[m] = 0.0;
+      for (std::size_t r = 0; r < n; ++r) K[r * n + m] = col[r];
+    }
+    std::vector<double> C(d * d * d * d);
+    model.material().tangent(C.data());
+    std::vector<double> assembled(n * n, 0.0);
+    for_each_tangent_row(model.G(), {C.data(), 0, model.volume().data()}, model.S(),
+                         [&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
+                           for (std::size_t q = 0; q < cols.size(); ++q)
+                             for (int a = 0; a < d; ++a)
+                               for (int b = 0; b < d; ++b)
+                                 assembled[(i * d + a) * n + cols[q] * d + b] = blocks[(q * d + a) * d + b];
+                         });
+    double err = 0.0, scale = test::max_abs(K);
+    for (std::size_t m = 0; m < n * n; ++m) err = std::max(err, std::abs(K[m] - assembled[m]));
+    CHECK(err <= 1e-11 * scale);
+    const auto sums = model.stiffness_row_sums();
+    for (std::size_t r = 0; r < n; ++r) {
+      double s = 0.0;
+      for (std::size_t m = 0; m < n; ++m) s += std::abs(K[r * n + m]);
+      CHECK(sums[r] == Approx(s).epsilon(1e-10));
+    }
+  }
+}

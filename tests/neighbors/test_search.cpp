@@ -1,0 +1,96 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "../support/clouds.hpp"
+#include "perinom/neighbors/search.hpp"
+
+using namespace perinom;
+
+namespace {
+
+/// A random cloud in the unit box (not a lattice, so distances are all distinct).
+PointCloud random_cloud(int dim, std::size_t n) {
+  PointCloud c;
+  c.dim = dim;
+  c.x = test::random_field(n * dim, 1.0, 11);
+  c.volume.assign(n, 1.0);
+  c.spacing.assign(dim, 1.0);
+  return c;
+}
+
+std::vector<double> distances(const PointCloud& c, std::size_t i) {
+  std::vector<double> r;
+  for (std::size_t j = 0; j < c.size(); ++j) {
+    if (j == i) continue;
+    double r2 = 0.0;
+    for (int a = 0; a < c.dim; ++a) r2 += std::pow(c.x[j * c.dim + a] - c.x[i * c.dim + a], 2);
+    r.push_back(std::sqrt(r2));
+  }
+  std::sort(r.begin(), r.end());
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("radius search equals brute force on random clouds", "[neighbors]") {
+  for (int dim : {2, 3}) {
+    const PointCloud c = random_cloud(dim, 700);
+    const double delta = dim == 2 ? 0.2 : 0.4;  // about 20 neighbours in [-1, 1]^d
+    const Families fast = radius_families(c, delta);
+    const Families slow = test::brute_force_radius(c, delta);
+    CHECK(fast.offsets == slow.offsets);
+    CHECK(fast.neighbors == slow.neighbors);
+    CHECK(fast.bonds() > 10 * c.size());
+  }
+}
+
+TEST_CASE("radius search equals brute force on a lattice at horizon ratio 3.015", "[neighbors]") {
+  const PointCloud c = test::lattice(3, 9, 0.0);
+  const Families fast = radius_families(c, 3.015);
+  CHECK(fast.neighbors == test::brute_force_radius(c, 3.015).neighbors);
+  // An interior particle of a simple-cubic lattice has 122 neighbours within 3.015.
+  std::size_t most = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) most = std::max<std::size_t>(most, fast.end(i) - fast.begin(i));
+  CHECK(most == 122);
+}
+
+TEST_CASE("k-nearest search equals brute force", "[neighbors]") {
+  for (int dim : {2, 3}) {
+    const PointCloud c = random_cloud(dim, 500);
+    const int k = dim == 2 ? 14 : 33;
+    const Families f = knn_families(c, k);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      REQUIRE(f.end(i) - f.begin(i) == k);
+      const auto r = distances(c, i);
+      // The k-th distance is the support, and every neighbour lies within it.
+      CHECK(f.support[i] == Approx(r[k - 1]).epsilon(1e-14));
+      for (Offset m = f.begin(i); m < f.end(i); ++m) {
+        const std::size_t j = f.neighbors[m];
+        double r2 = 0.0;
+        for (int a = 0; a < dim; ++a) r2 += std::pow(c.x[j * dim + a] - c.x[i * dim + a], 2);
+        CHECK(std::sqrt(r2) <= r[k - 1] * (1 + 1e-14));
+        CHECK(j != i);
+      }
+    }
+  }
+}
+
+TEST_CASE("the dual-support of k-nearest families lists exactly the bonds pointing in", "[neighbors]") {
+  const PointCloud c = random_cloud(2, 300);
+  const Families f = knn_families(c, 10);
+  const DualSupport t = dual_support(f);
+  std::size_t unequal = 0;
+  for (std::size_t i = 0; i < f.particles(); ++i) {
+    for (Offset s = t.offsets[i]; s < t.offsets[i + 1]; ++s) {
+      CHECK(f.neighbors[t.bond[s]] == static_cast<ParticleId>(i));
+      const std::size_t j = t.neighbors[s];
+      CHECK(t.bond[s] >= f.begin(j));
+      CHECK(t.bond[s] < f.end(j));
+    }
+    unequal += (t.offsets[i + 1] - t.offsets[i]) != (f.end(i) - f.begin(i));
+  }
+  CHECK(t.offsets.back() == static_cast<Offset>(f.bonds()));
+  CHECK(unequal > 0);  // supports really differ: the dual-support is not the family
+}
