@@ -102,9 +102,15 @@ int run(const Options& opt) {
 
   io::PvdSeries series(dir, scene.name);
   std::vector<double> u(p.model->dofs(), 0.0), v;
+  std::int64_t last_snapshot = -1;
+  double end_time = 0.0;
+  // ADR snapshots are stamped with the iteration, Verlet snapshots with the time (s).
+  const bool dynamic = scene.solver.type == "verlet";
   Observer observe{scene.output.vtk_every,
-                   [&](std::int64_t, double t, const std::vector<double>& state) {
-                     add_snapshot(series, t, p, state);
+                   [&](std::int64_t it, double t, const std::vector<double>& state) {
+                     add_snapshot(series, dynamic ? t : double(it), p, state);
+                     last_snapshot = it;
+                     end_time = t;
                    }};
   TerminalProgress progress(scene.solver.type.c_str());
   SolveReport rep;
@@ -133,7 +139,8 @@ int run(const Options& opt) {
     progress.finish();
   }
   timer.start("output");
-  add_snapshot(series, rep.iterations, p, u);
+  if (last_snapshot != rep.iterations || !failure.empty())
+    add_snapshot(series, dynamic ? (failure.empty() ? rep.end_time : end_time) : double(rep.iterations), p, u);
   write_history(dir + "/history.csv", rep.history);
   Json summary = Json::object();
   summary["scene"] = scene.source;
@@ -148,7 +155,10 @@ int run(const Options& opt) {
   solver["converged"] = failure.empty() && rep.converged;
   solver["residual"] = rep.residual;
   solver["displacement_change"] = rep.displacement_change;
-  if (scene.solver.type == "verlet") solver["stable_time_step"] = rep.stable_time_step;
+  if (dynamic) {
+    solver["stable_time_step"] = rep.stable_time_step;
+    solver["end_time"] = rep.end_time;
+  }
   if (!failure.empty()) solver["error"] = failure;
   summary["solver"] = solver;
   summary["probes"] = probe_results(p, u, dir);
@@ -159,9 +169,13 @@ int run(const Options& opt) {
   write_json_file(dir + "/summary.json", summary);
 
   if (!failure.empty()) throw SolveError(failure + "; the last good state is in " + dir);
-  std::printf("perinom: %s after %lld iterations (residual %.3e); results in %s\n",
-              rep.converged ? "converged" : "NOT converged", static_cast<long long>(rep.iterations),
-              rep.residual, dir.c_str());
+  if (dynamic)
+    std::printf("perinom: %lld steps to t = %.6e s (stable step %.3e s); results in %s\n",
+                static_cast<long long>(rep.iterations), rep.end_time, rep.stable_time_step, dir.c_str());
+  else
+    std::printf("perinom: %s after %lld iterations (residual %.3e); results in %s\n",
+                rep.converged ? "converged" : "NOT converged", static_cast<long long>(rep.iterations),
+                rep.residual, dir.c_str());
   for (const auto& probe : p.probes)
     if (!probe.spec.is_line) {
       std::vector<double> sigma;

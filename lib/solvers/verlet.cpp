@@ -70,6 +70,7 @@ SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptio
     for (std::size_t k = 0; k < n; ++k) v[k] += 0.5 * dt * a[k];
     loading.zero_fixed(v.data());
     rep.iterations = step;
+    rep.end_time = t;
     if (step % 100 == 0) last_good = u;
     if (step % opt.history_every == 0) record(step, t);
     observe(step, t, u);

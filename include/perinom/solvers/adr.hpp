@@ -23,6 +23,7 @@ struct SolveReport {
   double residual = 0.0;             ///< final relative residual
   double displacement_change = 0.0;  ///< final relative displacement increment
   double stable_time_step = 0.0;     ///< Verlet only (s)
+  double end_time = 0.0;             ///< Verlet only: simulated time reached (s)
   History history;
 };
 

@@ -1,0 +1,358 @@
+// The perinom program on malformed input: every case must end with exit code 2 and one
+// line on stderr that names the key (and its line, where YAML gives one) or the particle.
+// Each test writes a tiny scene (10 x 10 particles) into its own temporary folder and
+// runs the real binary (PERINOM_EXE, set by tests/CMakeLists.txt), so the whole file takes
+// well under a second per case.
+#include <catch2/catch.hpp>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <iterator>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#ifndef PERINOM_EXE
+#error "PERINOM_EXE must name the perinom binary (a string literal)"
+#endif
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A fresh folder under the system temp folder, removed with its contents at scope end.
+struct ScratchDir {
+  fs::path path;
+  ScratchDir() {
+    std::string pattern = (fs::temp_directory_path() / "perinom_cli_XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp " + pattern);
+    path = pattern;
+  }
+  ~ScratchDir() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+};
+
+/// A valid 2-D scene: 10 x 10 particles, bottom fixed, pressure on top, two probes.
+const std::string tiny_scene = R"(name: tiny
+dimension: 2
+geometry:
+  box: {min: [0.0, 0.0], max: [0.01, 0.01]}
+discretization:
+  dx: 0.001
+  horizon: {ratio: 3.015}
+material:
+  type: linear_elastic
+  E: 1.0e9
+  nu: 0.25
+  density: 1000.0
+boundary:
+  - region: bottom
+    fix: [x, y]
+  - region: top
+    pressure: 1.0e6
+solver:
+  type: adr
+  tolerance: 1.0e-6
+  displacement_tolerance: 1.0e-6
+probes:
+  - name: top_uy
+    point: [0.005, 0.01]
+    component: y
+  - name: mid
+    line: {from: [0.005, 0.0], to: [0.005, 0.01]}
+    field: stress
+    component: yy
+)";
+
+/// The scene with the one occurrence of `from` replaced by `to`.
+std::string with(const std::string& scene, const std::string& from, const std::string& to) {
+  const auto at = scene.find(from);
+  REQUIRE(at != std::string::npos);
+  REQUIRE(scene.find(from, at + 1) == std::string::npos);
+  return scene.substr(0, at) + to + scene.substr(at + from.size());
+}
+
+/// The 1-based line of the first occurrence of `text` in the scene.
+int line_of(const std::string& scene, const std::string& text) {
+  const auto at = scene.find(text);
+  REQUIRE(at != std::string::npos);
+  return 1 + static_cast<int>(std::count(scene.begin(), scene.begin() + at, '\n'));
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+struct Outcome {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+/// Runs `perinom ARGS` inside the folder (so scene.yaml is named as such in messages).
+Outcome perinom(const ScratchDir& dir, const std::string& args) {
+  const std::string q = "'" + dir.path.string() + "'";
+  const std::string command = "cd " + q + " && '" PERINOM_EXE "' " + args + " >" + q +
+                              "/stdout.txt 2>" + q + "/stderr.txt";
+  const int status = std::system(command.c_str());
+  Outcome o;
+  o.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+  o.out = slurp(dir.path / "stdout.txt");
+  o.err = slurp(dir.path / "stderr.txt");
+  return o;
+}
+
+/// Bad input: exit code 2 and exactly one "perinom: error: ..." line holding every needle.
+void require_one_clear_error(const Outcome& o, std::initializer_list<std::string> needles) {
+  INFO("stderr: " << o.err);
+  INFO("stdout: " << o.out);
+  CHECK(o.exit_code == 2);
+  std::vector<std::string> lines;
+  std::istringstream in(o.err);
+  for (std::string l; std::getline(in, l);)
+    if (!l.empty()) lines.push_back(l);
+  REQUIRE(lines.size() == 1);
+  CHECK(lines[0].rfind("perinom: error: ", 0) == 0);
+  for (const auto& n : needles) CHECK(lines[0].find(n) != std::string::npos);
+}
+
+/// Writes the scene and checks that both `check` and `run` reject it with the needles.
+void require_rejected(const std::string& scene, std::initializer_list<std::string> needles,
+                      const std::string& extra = "") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << scene;
+  SECTION("perinom check") { require_one_clear_error(perinom(dir, "check scene.yaml " + extra), needles); }
+  SECTION("perinom run") {
+    require_one_clear_error(perinom(dir, "run scene.yaml --out out " + extra), needles);
+    CHECK_FALSE(fs::exists(dir.path / "out" / "summary.json"));
+  }
+}
+
+/// "scene.yaml:N: key" for the line of `text` in the scene.
+std::string at_line(const std::string& scene, const std::string& text, const std::string& key) {
+  return "scene.yaml:" + std::to_string(line_of(scene, text)) + ": " + key;
+}
+
+}  // namespace
+
+TEST_CASE("the tiny scene used below is valid", "[cli]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  const Outcome o = perinom(dir, "check scene.yaml");
+  INFO("stderr: " << o.err);
+  CHECK(o.exit_code == 0);
+  CHECK(o.err.empty());
+}
+
+TEST_CASE("an unknown top-level key is named with its line", "[cli]") {
+  const std::string s = with(tiny_scene, "dimension: 2\n", "dimension: 2\ncolour: red\n");
+  require_rejected(s, {at_line(s, "colour:", "colour: unknown key")});
+}
+
+TEST_CASE("an unknown nested key is named by its dotted path and line", "[cli]") {
+  const std::string s = with(tiny_scene, "  E: 1.0e9\n", "  E: 1.0e9\n  Young: 2.0e9\n");
+  require_rejected(s, {at_line(s, "Young:", "material.Young: unknown key")});
+}
+
+TEST_CASE("an unknown key in a list item is named with the item's index", "[cli]") {
+  const std::string s = with(tiny_scene, "    fix: [x, y]\n", "    fix: [x, y]\n    colour: red\n");
+  require_rejected(s, {at_line(s, "colour:", "boundary[0].colour: unknown key")});
+}
+
+TEST_CASE("a number given as text is a wrong type", "[cli]") {
+  const std::string s = with(tiny_scene, "E: 1.0e9", "E: \"abc\"");
+  require_rejected(s, {at_line(s, "E: \"abc\"", "material.E: must be a number")});
+}
+
+TEST_CASE("a scalar where a mapping belongs is a wrong type", "[cli]") {
+  const std::string s = with(tiny_scene, "horizon: {ratio: 3.015}", "horizon: 3.015");
+  require_rejected(s, {at_line(s, "horizon:", "discretization.horizon: must be a mapping")});
+}
+
+TEST_CASE("a missing required key is named", "[cli]") {
+  const std::string s = with(tiny_scene, "  E: 1.0e9\n", "");
+  // The line given is that of the enclosing mapping (its first key).
+  require_rejected(s, {at_line(s, "  type: linear_elastic", "material.E: required key is missing")});
+}
+
+TEST_CASE("a non-positive Young's modulus is rejected", "[cli]") {
+  for (const std::string e : {"0", "-1.0e9"}) {
+    DYNAMIC_SECTION("E = " << e) {
+      const std::string s = with(tiny_scene, "E: 1.0e9", "E: " + e);
+      require_rejected(s, {at_line(s, "E: ", "material.E: must be positive")});
+    }
+  }
+}
+
+TEST_CASE("a non-positive particle spacing is rejected", "[cli]") {
+  for (const std::string dx : {"0", "-0.001"}) {
+    DYNAMIC_SECTION("dx = " << dx) {
+      const std::string s = with(tiny_scene, "dx: 0.001", "dx: " + dx);
+      require_rejected(s, {at_line(s, "dx:", "discretization.dx: must be positive")});
+    }
+  }
+}
+
+TEST_CASE("a non-positive density is rejected", "[cli]") {
+  const std::string s = with(tiny_scene, "density: 1000.0", "density: 0");
+  require_rejected(s, {at_line(s, "density:", "material.density: must be positive")});
+}
+
+TEST_CASE("Poisson's ratio outside (-1, 0.5) is rejected", "[cli]") {
+  for (const std::string nu : {"0.5", "-1"}) {
+    DYNAMIC_SECTION("nu = " << nu) {
+      const std::string s = with(tiny_scene, "nu: 0.25", "nu: " + nu);
+      require_rejected(s, {at_line(s, "nu:", "material.nu: must lie in (-1, 0.5)")});
+    }
+  }
+}
+
+TEST_CASE("a horizon too small for an invertible shape tensor names a particle", "[cli]") {
+  const std::string s = with(tiny_scene, "ratio: 3.015", "ratio: 0.9");
+  require_rejected(s, {"particle 0 at (", "shape tensor is singular",
+                       "discretization.horizon.ratio"});
+}
+
+TEST_CASE("an empty geometry (max <= min) is rejected", "[cli]") {
+  for (const std::string max : {"[0.01, 0.0]", "[-0.01, 0.01]"}) {
+    DYNAMIC_SECTION("max = " << max) {
+      const std::string s = with(tiny_scene, "max: [0.01, 0.01]", "max: " + max);
+      require_rejected(s, {at_line(s, "box:", "geometry.box: max must exceed min")});
+    }
+  }
+}
+
+TEST_CASE("a region that selects no particle is named", "[cli]") {
+  const std::string s = with(tiny_scene, "  - region: bottom\n",
+                             "  - region: {box: {min: [1.0, 1.0], max: [2.0, 2.0]}}\n");
+  require_rejected(s, {"scene.yaml", "boundary[0].region: selects no particle"});
+}
+
+TEST_CASE("an unknown side name is named with its line", "[cli]") {
+  const std::string s = with(tiny_scene, "region: top", "region: roof");
+  require_rejected(s, {at_line(s, "roof", "boundary[1].region: unknown side 'roof'")});
+}
+
+TEST_CASE("the improved formulation is refused as not implemented", "[cli]") {
+  const std::string s = with(tiny_scene, "boundary:\n", "model: {formulation: improved}\nboundary:\n");
+  require_rejected(s, {at_line(s, "model:", "model.formulation:"), "not implemented"});
+}
+
+TEST_CASE("invalid YAML syntax gives the line of the error", "[cli]") {
+  const std::string s = with(tiny_scene, "E: 1.0e9", "E: 1.0e9: 2");
+  require_rejected(s, {at_line(s, "E: 1.0e9: 2", "not valid YAML")});
+}
+
+TEST_CASE("a line probe that meets no particle names the probe", "[cli]") {
+  const std::string s = with(tiny_scene, "line: {from: [0.005, 0.0], to: [0.005, 0.01]}",
+                             "line: {from: [1.0, 1.0], to: [2.0, 2.0]}");
+  require_rejected(s, {"probe 'mid'", "meets no particle"});
+}
+
+TEST_CASE("a --set to an unknown key is named like a key in the file", "[cli]") {
+  require_rejected(tiny_scene, {"material.Young: unknown key"}, "--set material.Young=1");
+}
+
+TEST_CASE("a --set with a list index out of range is named", "[cli]") {
+  require_rejected(tiny_scene, {"--set boundary.7.pressure", "list index 7 is out of range"},
+                   "--set boundary.7.pressure=1e5");
+}
+
+TEST_CASE("a --set without '=' is rejected", "[cli]") {
+  require_rejected(tiny_scene, {"--set material.E", "expected dotted.key=value"}, "--set material.E");
+}
+
+TEST_CASE("a --set of a bad value is checked like the file", "[cli]") {
+  require_rejected(tiny_scene, {"boundary[1].pressure: must be a number"},
+                   "--set boundary.1.pressure=abc");
+}
+
+TEST_CASE("an unwritable output folder is rejected before the solve", "[cli]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  std::ofstream(dir.path / "a_file") << "not a folder\n";
+  const Outcome o = perinom(dir, "run scene.yaml --out a_file/out");
+  require_one_clear_error(o, {"--out a_file/out", "cannot be created or written"});
+}
+
+TEST_CASE("a missing scene file is named", "[cli]") {
+  ScratchDir dir;
+  SECTION("perinom run") {
+    require_one_clear_error(perinom(dir, "run no_such_scene.yaml --out out"),
+                            {"no_such_scene.yaml", "cannot open the scene file"});
+  }
+  SECTION("perinom check") {
+    require_one_clear_error(perinom(dir, "check no_such_scene.yaml"),
+                            {"no_such_scene.yaml", "cannot open the scene file"});
+  }
+}
+
+TEST_CASE("bad command line options are named", "[cli]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  require_one_clear_error(perinom(dir, "run scene.yaml --frobnicate"), {"unknown option --frobnicate"});
+  require_one_clear_error(perinom(dir, "run scene.yaml --threads abc"), {"--threads", "'abc'"});
+  require_one_clear_error(perinom(dir, "run scene.yaml --out"), {"--out needs a value"});
+  require_one_clear_error(perinom(dir, "run"), {"run needs exactly one scene file"});
+}
+
+TEST_CASE("a valid run writes its outputs and leaves no temporary file", "[cli]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  const Outcome o = perinom(dir, "run scene.yaml --out results --threads 1 --set boundary.1.pressure=2e5");
+  INFO("stderr: " << o.err);
+  INFO("stdout: " << o.out);
+  REQUIRE(o.exit_code == 0);
+  CHECK(o.err.empty());
+  const fs::path out = dir.path / "results";
+  CHECK(fs::is_regular_file(out / "summary.json"));
+  CHECK(fs::is_regular_file(out / "history.csv"));
+  CHECK(fs::is_regular_file(out / "tiny.pvd"));
+  CHECK(fs::is_regular_file(out / "probe_mid.csv"));
+  int vtu = 0, tmp = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir.path)) {
+    vtu += e.path().extension() == ".vtu";
+    tmp += e.path().extension() == ".tmp";
+  }
+  CHECK(vtu >= 1);
+  CHECK(fs::is_regular_file(out / "tiny_000000.vtu"));
+  CHECK(tmp == 0);
+  CHECK_FALSE(fs::exists(out / ".perinom-write-test"));
+  const std::string summary = slurp(out / "summary.json");
+  CHECK(summary.find("\"converged\": true") != std::string::npos);
+  CHECK(summary.find("\"top_uy\"") != std::string::npos);
+  CHECK(slurp(out / "history.csv").rfind("iteration,load_factor,residual,displacement_change,damping\n", 0) == 0);
+}
+
+// Known gaps, kept as tests so they turn green when fixed: [!mayfail] reports a failure
+// without failing the run. See the notes in docs/scene-format.md ("Known issues").
+
+TEST_CASE("a duplicated key is rejected", "[cli][!mayfail]") {
+  // yaml-cpp keeps the first of two equal keys; the reader never sees the second.
+  const std::string s = with(tiny_scene, "  E: 1.0e9\n", "  E: 1.0e9\n  E: -3\n");
+  require_rejected(s, {"material.E"});
+}
+
+TEST_CASE("a --set that walks into a scalar is bad input, not an internal error", "[cli][!mayfail]") {
+  require_rejected(tiny_scene, {"--set material.E.x"}, "--set material.E.x=1");
+}
+
+TEST_CASE("a stress probe component with a space is rejected", "[cli][!mayfail]") {
+  const std::string s = with(tiny_scene, "component: yy", "component: \" y\"");
+  require_rejected(s, {"probes[1].component"});
+}
+
+TEST_CASE("a non-numeric --stabilization for bench is bad input", "[cli][!mayfail]") {
+  ScratchDir dir;
+  require_one_clear_error(perinom(dir, "bench force --dimension 2 --n 4 --stabilization abc"),
+                          {"--stabilization"});
+}
