@@ -54,7 +54,14 @@ int main(int argc, char** argv) {
       else if (a == "--threads") opt.threads = static_cast<int>(integer());
       else if (a == "--dimension") opt.dimension = static_cast<int>(integer());
       else if (a == "--n") opt.n = integer();
-      else if (a == "--stabilization") opt.stabilization = std::stod(value());
+      else if (a == "--stabilization") {
+        const std::string v = value();
+        try {
+          opt.stabilization = std::stod(v);
+        } catch (const std::exception&) {
+          throw InputError("option --stabilization: '" + v + "' is not a number");
+        }
+      }
       else if (a.rfind("--", 0) == 0) throw InputError("unknown option " + a);
       else opt.positional.push_back(a);
     }

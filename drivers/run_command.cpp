@@ -103,20 +103,17 @@ int run(const Options& opt) {
   io::PvdSeries series(dir, scene.name);
   std::vector<double> u(p.model->dofs(), 0.0), v;
   std::int64_t last_snapshot = -1;
-  double end_time = 0.0;
   // ADR snapshots are stamped with the iteration, Verlet snapshots with the time (s).
   const bool dynamic = scene.solver.type == "verlet";
   Observer observe{scene.output.vtk_every,
                    [&](std::int64_t it, double t, const std::vector<double>& state) {
                      add_snapshot(series, dynamic ? t : double(it), p, state);
                      last_snapshot = it;
-                     end_time = t;
                    }};
   TerminalProgress progress(scene.solver.type.c_str());
   SolveReport rep;
-  std::string failure;
   timer.start("solve");
-  try {
+  {
     if (scene.solver.type == "adr") {
       AdrOptions o;
       o.tolerance = scene.solver.tolerance;
@@ -134,13 +131,11 @@ int run(const Options& opt) {
       o.history_every = scene.solver.history_every;
       rep = solve_verlet(*p.model, p.loading, o, u, v, &progress, observe);
     }
-  } catch (const SolveError& e) {
-    failure = e.what();
-    progress.finish();
   }
+  const std::string& failure = rep.failure;
   timer.start("output");
   if (last_snapshot != rep.iterations || !failure.empty())
-    add_snapshot(series, dynamic ? (failure.empty() ? rep.end_time : end_time) : double(rep.iterations), p, u);
+    add_snapshot(series, dynamic ? rep.end_time : double(rep.iterations), p, u);
   write_history(dir + "/history.csv", rep.history);
   Json summary = Json::object();
   summary["scene"] = scene.source;

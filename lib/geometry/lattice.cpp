@@ -31,6 +31,12 @@ PointCloud make_lattice(const BoxGeometry& box, double dx, double jitter, std::u
     cloud.spacing[a] = length / n[a];
     cell_volume *= cloud.spacing[a];
   }
+  // Ids are 32-bit; refuse a mistyped dx before trying to allocate the lattice.
+  const double count = double(n[0]) * n[1] * (d == 3 ? n[2] : 1);
+  if (count > 2.0e9)
+    throw InputError("the box holds " + std::to_string(count) +
+                     " lattice cells at this spacing, more than perinom's 2e9 particle limit "
+                     "(check discretization.dx)");
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> offset(-0.5, 0.5);
   const long nz = (d == 3) ? n[2] : 1;
@@ -48,7 +54,7 @@ PointCloud make_lattice(const BoxGeometry& box, double dx, double jitter, std::u
         cloud.x.insert(cloud.x.end(), p, p + d);
         cloud.volume.push_back(cell_volume);
       }
-  if (cloud.size() == 0) throw InputError("geometry: the box minus its holes holds no particle");
+  if (cloud.size() == 0) throw InputError("the box minus its holes holds no particle");
   return cloud;
 }
 

@@ -15,7 +15,7 @@ Loading make_loading(const Scene& s, const PointCloud& cloud) {
   Loading load;
   for (const auto& b : s.boundary) {
     const auto ids = select(b.region, s.geometry, cloud);
-    if (ids.empty()) throw InputError(s.source + ": " + b.where + ".region: selects no particle");
+    if (ids.empty()) throw InputError(b.where + ".region: selects no particle");
     for (int a = 0; a < d; ++a) {
       if (!b.fix[a] && !b.displacement[a]) continue;
       for (const auto i : ids) load.fix(static_cast<std::int64_t>(i) * d + a, b.displacement[a].value_or(0.0));
@@ -37,7 +37,7 @@ Loading make_loading(const Scene& s, const PointCloud& cloud) {
   return load;
 }
 
-BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud, const std::string& source) {
+BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud) {
   const int d = cloud.dim;
   BoundProbe b{p, {}, {}};
   if (!p.is_line) {
@@ -53,7 +53,7 @@ BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud, const std::st
   }
   double len2 = 0.0;
   for (int a = 0; a < d; ++a) len2 += std::pow(p.to[a] - p.from[a], 2);
-  if (!(len2 > 0.0)) throw InputError(source + ": probe '" + p.name + "': line.from equals line.to");
+  if (!(len2 > 0.0)) throw InputError(p.where + ".line: probe '" + p.name + "' has from equal to to");
   const double half = 0.5 * *std::max_element(cloud.spacing.begin(), cloud.spacing.end());
   std::vector<std::pair<double, ParticleId>> hits;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
@@ -65,7 +65,7 @@ BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud, const std::st
       r2 += std::pow(cloud.x[i * d + a] - (p.from[a] + t * (p.to[a] - p.from[a])), 2);
     if (r2 <= half * half * (1.0 + 1e-9)) hits.emplace_back(t * std::sqrt(len2), static_cast<ParticleId>(i));
   }
-  if (hits.empty()) throw InputError(source + ": probe '" + p.name + "': the line meets no particle");
+  if (hits.empty()) throw InputError(p.where + ".line: probe '" + p.name + "' meets no particle");
   std::sort(hits.begin(), hits.end());
   for (const auto& h : hits) {
     b.along.push_back(h.first);
@@ -80,18 +80,34 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
   Problem p;
   p.scene = s;
   if (timer) timer->start("discretization");
-  p.cloud = make_lattice(s.geometry, s.discretization.dx, s.discretization.jitter, s.discretization.seed);
-  Families families = s.discretization.horizon_neighbors > 0
-                          ? knn_families(p.cloud, s.discretization.horizon_neighbors)
-                          : radius_families(p.cloud, s.discretization.horizon_ratio * s.discretization.dx);
+  const std::string horizon_key = s.discretization.horizon_neighbors > 0
+                                      ? "discretization.horizon.neighbors"
+                                      : "discretization.horizon.ratio";
+  Families families;
+  try {
+    p.cloud = make_lattice(s.geometry, s.discretization.dx, s.discretization.jitter, s.discretization.seed);
+  } catch (const InputError& e) {
+    throw InputError(s.source + ": geometry: " + e.what());
+  }
+  try {
+    families = s.discretization.horizon_neighbors > 0
+                   ? knn_families(p.cloud, s.discretization.horizon_neighbors)
+                   : radius_families(p.cloud, s.discretization.horizon_ratio * s.discretization.dx);
+  } catch (const InputError& e) {
+    throw InputError(s.source + ": " + horizon_key + ": " + e.what());
+  }
   p.bonds = families.bonds();
   p.loading = make_loading(s, p.cloud);
-  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud, s.source));
+  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
   if (timer) timer->start("operators");
   CorrespondenceOptions opt;
   opt.influence = s.discretization.weight;
   opt.stabilization = s.model.stabilization;
-  p.model = std::make_unique<CorrespondenceModel>(p.cloud, families, s.material, opt);
+  try {
+    p.model = std::make_unique<CorrespondenceModel>(p.cloud, families, s.material, opt);
+  } catch (const InputError& e) {
+    throw InputError(s.source + ": " + horizon_key + ": " + e.what());
+  }
   if (timer) timer->stop();
   return p;
 }

@@ -1,6 +1,7 @@
 // Reads a scene file into a Scene, strictly: unknown keys, wrong types, missing keys and
 // values out of range all end in an InputError that names the key and its line.
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "perinom/core/error.hpp"
@@ -62,7 +63,7 @@ void read_discretization(Fields f, Scene& s) {
     d.horizon_ratio = h.number("ratio");
     if (!(d.horizon_ratio > 0.0)) h.fail("ratio", "must be positive");
   } else {
-    const auto k = h.integer("neighbors");
+    const auto k = h.small_integer("neighbors", 0);
     if (k < s.dim) h.fail("neighbors", "must be at least the dimension");
     d.horizon_neighbors = static_cast<int>(k);
   }
@@ -134,7 +135,7 @@ void read_boundary(const std::vector<YAML::Node>& items, const std::string& sour
   for (std::size_t k = 0; k < items.size(); ++k) {
     Fields f(items[k], "boundary[" + std::to_string(k) + "]", source);
     BoundarySpec b;
-    b.where = "boundary[" + std::to_string(k) + "]";
+    b.where = detail::where(source, items[k]) + "boundary[" + std::to_string(k) + "]";
     b.region = read_region(f, s);
     for (const auto& c : f.list("fix")) {
       const int a = c.IsScalar() ? axis_of(c.as<std::string>(), s.dim) : -1;
@@ -168,7 +169,7 @@ void read_solver(Fields f, Scene& s) {
   if (!(v.displacement_tolerance > 0.0)) f.fail("displacement_tolerance", "must be positive");
   v.max_iterations = f.integer("max_iterations", v.max_iterations);
   if (v.max_iterations < 1) f.fail("max_iterations", "must be at least 1");
-  v.load_steps = static_cast<int>(f.integer("load_steps", v.load_steps));
+  v.load_steps = f.small_integer("load_steps", v.load_steps);
   if (v.load_steps < 1) f.fail("load_steps", "must be at least 1");
   v.dt = f.number("dt", v.dt);
   if (v.dt < 0.0) f.fail("dt", "must be positive (or 0 for the stable step)");
@@ -187,7 +188,10 @@ void read_probes(const std::vector<YAML::Node>& items, const std::string& source
   for (std::size_t k = 0; k < items.size(); ++k) {
     Fields f(items[k], "probes[" + std::to_string(k) + "]", source);
     ProbeSpec p;
+    p.where = detail::where(source, items[k]) + "probes[" + std::to_string(k) + "]";
     p.name = f.text("name");
+    if (p.name.empty() || p.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != std::string::npos)
+      f.fail("name", "must be made of letters, digits, '_', '-' and '.' (it names a file)");
     for (const auto& q : s.probes)
       if (q.name == p.name) f.fail("name", "another probe is already named '" + p.name + "'");
     p.is_line = f.has("line");
@@ -206,11 +210,12 @@ void read_probes(const std::vector<YAML::Node>& items, const std::string& source
       if (axis_of(p.component, s.dim) < 0) f.fail("component", "must be x, y" + std::string(s.dim == 3 ? " or z" : ""));
     } else if (p.field == "stress") {
       p.component = f.text("component");
-      const std::string ok = "xx yy zz xy yz xz";
-      if (p.component.size() != 2 || ok.find(p.component) == std::string::npos)
-        f.fail("component", "must be xx, yy, zz, xy, yz or xz");
+      const std::set<std::string> ok = {"xx", "yy", "zz", "xy", "yz", "xz", "yx", "zy", "zx"};
+      if (!ok.count(p.component) || (s.dim == 2 && p.component.find('z') != std::string::npos &&
+                                     p.component != "zz"))
+        f.fail("component", s.dim == 2 ? "must be xx, yy, zz or xy" : "must be xx, yy, zz, xy, yz or xz");
     } else if (p.field == "von_mises") {
-      f.mark("component");
+      if (f.has("component")) f.fail("component", "a von_mises probe has no component");
     } else {
       f.fail("field", "must be displacement, stress or von_mises");
     }
@@ -237,7 +242,7 @@ Scene parse_scene(const std::string& text, const std::string& source,
   s.name = top.text("name");
   if (s.name.empty() || s.name.find_first_of("/\\") != std::string::npos)
     top.fail("name", "must be a non-empty name without slashes (it names output files)");
-  s.dim = static_cast<int>(top.integer("dimension"));
+  s.dim = top.small_integer("dimension", 0);
   if (s.dim != 2 && s.dim != 3) top.fail("dimension", "must be 2 or 3");
   read_geometry(top.map("geometry"), s);
   read_discretization(top.map("discretization"), s);

@@ -17,6 +17,13 @@ Fields::Fields(const YAML::Node& node, std::string path, std::string source)
   if (!node_.IsMap())
     throw InputError(where(source_, node_) + (path_.empty() ? "scene" : path_) +
                      ": must be a mapping of keys to values");
+  // yaml-cpp keeps the first of two equal keys and drops the second silently.
+  std::set<std::string> seen;
+  for (const auto& kv : node_) {
+    const std::string k = kv.first.as<std::string>();
+    if (!seen.insert(k).second)
+      throw InputError(where(source_, kv.first) + key(k) + ": key given twice");
+  }
 }
 
 bool Fields::has(const std::string& k) const { return node_[k].IsDefined() && !node_[k].IsNull(); }
@@ -61,6 +68,12 @@ std::int64_t Fields::integer(const std::string& k) {
 
 std::int64_t Fields::integer(const std::string& k, std::int64_t fallback) {
   return has(k) ? integer(k) : (used_.insert(k), fallback);
+}
+
+int Fields::small_integer(const std::string& k, int fallback) {
+  const std::int64_t v = integer(k, fallback);
+  if (v > 1000000000 || v < -1000000000) fail(k, "is out of range");
+  return static_cast<int>(v);
 }
 
 std::string Fields::text(const std::string& k) {
@@ -130,10 +143,21 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
     if (dot == std::string::npos) break;
     start = dot + 1;
   }
+  try {
+    set_path(root, parts, value, path);
+  } catch (const YAML::Exception& e) {
+    throw InputError("--set " + path + ": cannot set this key (" + e.msg + ")");
+  }
+}
+
+void set_path(YAML::Node& root, const std::vector<std::string>& parts, const YAML::Node& value,
+              const std::string& path) {
   YAML::Node cur = root;
   for (std::size_t p = 0; p < parts.size(); ++p) {
     const std::string& part = parts[p];
     const bool index = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+    if (!index && cur.IsDefined() && !cur.IsNull() && !cur.IsMap())
+      throw InputError("--set " + path + ": '" + part + "' is a key inside something that is not a mapping");
     if (index && !cur.IsSequence())
       throw InputError("--set " + path + ": '" + part + "' indexes something that is not a list");
     if (index && std::stoul(part) >= cur.size())

@@ -21,6 +21,8 @@ class Fields {
   double number(const std::string& key, double fallback);
   std::int64_t integer(const std::string& key, std::int64_t fallback);
   std::int64_t integer(const std::string& key);  // required
+  /// A required or defaulted whole number that must fit in an int.
+  int small_integer(const std::string& key, int fallback);
   std::string text(const std::string& key);      // required
   std::string text(const std::string& key, const std::string& fallback);
   /// A list of exactly n numbers.
@@ -44,6 +46,10 @@ class Fields {
   std::string path_, source_;
   std::set<std::string> used_;
 };
+
+/// Sets root[parts[0]][parts[1]]... = value (numeric parts index lists).
+void set_path(YAML::Node& root, const std::vector<std::string>& parts, const YAML::Node& value,
+              const std::string& path);
 
 /// Applies one "dotted.key=value" override to the YAML tree.
 void apply_override(YAML::Node& root, const std::string& assignment);

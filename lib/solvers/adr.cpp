@@ -6,15 +6,16 @@
 #include "perinom/solvers/vector_ops.hpp"
 
 namespace perinom {
+namespace {
 
-SolveReport solve_adr(Model& model, const Loading& loading, const AdrOptions& opt,
-                      std::vector<double>& u, Progress* progress, const Observer& observe) {
+void solve_adr_steps(Model& model, const Loading& loading, const AdrOptions& opt,
+                             std::vector<double>& u, Progress* progress,
+                             const Observer& observe, SolveReport& rep) {
   const std::size_t n = model.dofs();
   u.resize(n, 0.0);
   std::vector<double> lambda = model.stiffness_row_sums();
   for (auto& l : lambda) l = 0.25 * l;  // dt = 1
   std::vector<double> v(n), f(n), f_old(n), fint(n), last_good(u);
-  SolveReport rep;
   rep.history.columns = {"iteration", "load_factor", "residual", "displacement_change",
                          "damping"};
   ProgressSample sample;
@@ -96,6 +97,20 @@ SolveReport solve_adr(Model& model, const Loading& loading, const AdrOptions& op
     if (!rep.converged) break;
   }
   if (progress) progress->finish();
+}
+
+}  // namespace
+
+SolveReport solve_adr(Model& model, const Loading& loading, const AdrOptions& opt,
+                      std::vector<double>& u, Progress* progress, const Observer& observe) {
+  SolveReport rep;
+  try {
+    solve_adr_steps(model, loading, opt, u, progress, observe, rep);
+  } catch (const SolveError& e) {
+    if (progress) progress->finish();
+    rep.converged = false;
+    rep.failure = e.what();
+  }
   return rep;
 }
 

@@ -16,13 +16,14 @@ double stable_time_step(const Model& model) {
   return 2.0 / std::sqrt(w2);
 }
 
-SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptions& opt,
-                         std::vector<double>& u, std::vector<double>& v, Progress* progress,
-                         const Observer& observe) {
+namespace {
+
+void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
+               std::vector<double>& u, std::vector<double>& v, Progress* progress,
+               const Observer& observe, SolveReport& rep) {
   const std::size_t n = model.dofs();
   u.resize(n, 0.0);
   v.resize(n, 0.0);
-  SolveReport rep;
   rep.stable_time_step = stable_time_step(model);
   const double dt = opt.dt > 0.0 ? opt.dt : opt.safety * rep.stable_time_step;
   const auto mass = model.lumped_mass();
@@ -82,6 +83,21 @@ SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptio
   }
   rep.converged = true;
   if (progress) progress->finish();
+}
+
+}  // namespace
+
+SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptions& opt,
+                         std::vector<double>& u, std::vector<double>& v, Progress* progress,
+                         const Observer& observe) {
+  SolveReport rep;
+  try {
+    integrate(model, loading, opt, u, v, progress, observe, rep);
+  } catch (const SolveError& e) {
+    if (progress) progress->finish();
+    rep.converged = false;
+    rep.failure = e.what();
+  }
   return rep;
 }
 

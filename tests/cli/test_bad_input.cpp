@@ -333,25 +333,24 @@ TEST_CASE("a valid run writes its outputs and leaves no temporary file", "[cli]"
   CHECK(slurp(out / "history.csv").rfind("iteration,load_factor,residual,displacement_change,damping\n", 0) == 0);
 }
 
-// Known gaps, kept as tests so they turn green when fixed: [!mayfail] reports a failure
-// without failing the run. See the notes in docs/scene-format.md ("Known issues").
+// Gaps found by these tests and since fixed.
 
-TEST_CASE("a duplicated key is rejected", "[cli][!mayfail]") {
+TEST_CASE("a duplicated key is rejected", "[cli]") {
   // yaml-cpp keeps the first of two equal keys; the reader never sees the second.
   const std::string s = with(tiny_scene, "  E: 1.0e9\n", "  E: 1.0e9\n  E: -3\n");
   require_rejected(s, {"material.E"});
 }
 
-TEST_CASE("a --set that walks into a scalar is bad input, not an internal error", "[cli][!mayfail]") {
+TEST_CASE("a --set that walks into a scalar is bad input, not an internal error", "[cli]") {
   require_rejected(tiny_scene, {"--set material.E.x"}, "--set material.E.x=1");
 }
 
-TEST_CASE("a stress probe component with a space is rejected", "[cli][!mayfail]") {
+TEST_CASE("a stress probe component with a space is rejected", "[cli]") {
   const std::string s = with(tiny_scene, "component: yy", "component: \" y\"");
   require_rejected(s, {"probes[1].component"});
 }
 
-TEST_CASE("a non-numeric --stabilization for bench is bad input", "[cli][!mayfail]") {
+TEST_CASE("a non-numeric --stabilization for bench is bad input", "[cli]") {
   ScratchDir dir;
   require_one_clear_error(perinom(dir, "bench force --dimension 2 --n 4 --stabilization abc"),
                           {"--stabilization"});

@@ -32,7 +32,7 @@ struct ModelSpec {
 /// One boundary condition on a region. Each of the three may be given: components to
 /// fix (at zero, or at a prescribed ramped displacement), a traction vector, a pressure.
 struct BoundarySpec {
-  std::string where;  ///< "boundary[k]" for messages
+  std::string where;  ///< "file:line: boundary[k]" for messages
   Region region;
   std::array<bool, 3> fix{false, false, false};
   std::array<std::optional<double>, 3> displacement;  ///< m, at full load
@@ -54,6 +54,7 @@ struct SolverSpec {
 };
 
 struct ProbeSpec {
+  std::string where;  ///< "file:line: probes[k]" for messages
   std::string name;
   bool is_line = false;
   std::array<double, 3> point{0, 0, 0}, from{0, 0, 0}, to{0, 0, 0};

@@ -1,6 +1,7 @@
 #pragma once
 /// @file Adaptive dynamic relaxation (THEORY sec. 8; Kilic and Madenci 2010).
 #include <cstdint>
+#include <string>
 
 #include "perinom/core/progress.hpp"
 #include "perinom/models/loading.hpp"
@@ -24,6 +25,7 @@ struct SolveReport {
   double displacement_change = 0.0;  ///< final relative displacement increment
   double stable_time_step = 0.0;     ///< Verlet only (s)
   double end_time = 0.0;             ///< Verlet only: simulated time reached (s)
+  std::string failure;               ///< why the solve stopped early (NaN or Inf), or empty
   History history;
 };
 
@@ -32,7 +34,8 @@ struct SolveReport {
 /// model's exact row sums; adaptive damping from the local Rayleigh quotient.
 /// The load norm is the larger of |f_ext| and the norm of the reactions at the constrained
 /// dofs, so displacement-driven scenes are measured too.
-/// Throws SolveError on NaN or Inf, leaving in u the last state whose force was finite.
+/// On NaN or Inf it stops with report.failure set and converged false, leaving in u the
+/// last state (checked every 100 iterations) whose force was finite.
 SolveReport solve_adr(Model& model, const Loading& loading, const AdrOptions& options,
                       std::vector<double>& u, Progress* progress = nullptr,
                       const Observer& observe = {});

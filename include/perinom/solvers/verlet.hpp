@@ -23,7 +23,8 @@ double stable_time_step(const Model& model);
 
 /// Integrates M u'' = s(t) f_ext - f_int(u) from the given u, v (constrained dofs follow
 /// s(t) u_bar). The history records time, kinetic, strain and external-work energies.
-/// Throws SolveError on NaN or Inf, leaving in u the last state whose force was finite.
+/// On NaN or Inf it stops with report.failure set and converged false, leaving in u the
+/// last state (checked every 100 steps) whose force was finite.
 SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptions& options,
                          std::vector<double>& u, std::vector<double>& v,
                          Progress* progress = nullptr, const Observer& observe = {});
