@@ -34,7 +34,7 @@ PointCloud make_lattice(const BoxGeometry& box, double dx, double jitter, std::u
   // Ids are 32-bit; refuse a mistyped dx before trying to allocate the lattice.
   const double count = double(n[0]) * n[1] * (d == 3 ? n[2] : 1);
   if (count > 2.0e9)
-    throw InputError("the box holds " + std::to_string(count) +
+    throw InputError("the box holds " + std::to_string(static_cast<long long>(count)) +
                      " lattice cells at this spacing, more than perinom's 2e9 particle limit "
                      "(check discretization.dx)");
   std::mt19937_64 rng(seed);
