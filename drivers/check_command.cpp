@@ -1,4 +1,5 @@
 // perinom check: validate a scene, build its operators, and print the plan and its memory.
+#include <algorithm>
 #include <cstdio>
 
 #include "commands.hpp"
@@ -20,6 +21,12 @@ int check(const Options& opt) {
   std::printf("  bonds           %zu (%.1f per particle)\n", p.bonds, double(p.bonds) / p.cloud.size());
   std::printf("  model           %s, %s formulation, stabilization C_hg = %g\n",
               scene.model.type.c_str(), scene.model.formulation.c_str(), scene.model.stabilization);
+  if (p.model->formulation() != Formulation::classical)
+    std::printf("  subregions      E (strong form, within 2 delta of a surface): %zu particles, "
+                "D (weak form): %zu, surface particles: %zu\n",
+                p.model->surface().band.size(), p.model->surface().interior.size(),
+                static_cast<std::size_t>(std::count(p.model->surface().on_surface.begin(),
+                                                    p.model->surface().on_surface.end(), 1)));
   std::printf("  constraints     %zu fixed degrees of freedom%s\n", p.loading.fixed.size(),
               p.loading.force.empty() ? "" : ", external forces");
   std::printf("  solver          %s\n", scene.solver.type.c_str());

@@ -41,9 +41,18 @@ void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const st
     for (int a = 0; a < d; ++a) u3[i * 3 + a] = u[i * d + a];
   p.model->stress3(u.data(), sigma);
   for (std::size_t i = 0; i < n; ++i) vm[i] = von_mises(sigma.data() + i * 9);
-  series.add(time, d, n, p.cloud.x.data(),
-             {{"displacement", 3, u3.data()}, {"stress", 9, sigma.data()},
-              {"von_mises", 1, vm.data()}, {"volume", 1, p.cloud.volume.data()}});
+  std::vector<io::PointField> fields = {{"displacement", 3, u3.data()}, {"stress", 9, sigma.data()},
+                                        {"von_mises", 1, vm.data()}, {"volume", 1, p.cloud.volume.data()}};
+  // Improved and strong formulations: subregion 1 = E (strong form), 0 = D (weak form).
+  std::vector<double> subregion, surface;
+  const Surface& s = p.model->surface();
+  if (!s.in_band.empty()) {
+    subregion.assign(s.in_band.begin(), s.in_band.end());
+    surface.assign(s.on_surface.begin(), s.on_surface.end());
+    fields.push_back({"subregion_E", 1, subregion.data()});
+    fields.push_back({"surface", 1, surface.data()});
+  }
+  series.add(time, d, n, p.cloud.x.data(), fields);
   series.write();
 }
 

@@ -1,15 +1,33 @@
 #include "perinom/models/correspondence.hpp"
 
+#include <algorithm>
+#include <stdexcept>
+
 #include "perinom/operators/bond_weights.hpp"
 #include "perinom/operators/stabilization.hpp"
 #include "perinom/operators/tangent_rows.hpp"
 
 namespace perinom {
 
+bool parse_formulation(const std::string& name, Formulation& f) {
+  if (name == "classical") f = Formulation::classical;
+  else if (name == "improved") f = Formulation::improved;
+  else if (name == "strong") f = Formulation::strong;
+  else return false;
+  return true;
+}
+
 CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families& families,
                                          const LinearElastic& material,
-                                         const CorrespondenceOptions& options)
-    : dim_(cloud.dim), material_(material), volume_(cloud.volume) {
+                                         const CorrespondenceOptions& options, Surface surface)
+    : dim_(cloud.dim),
+      formulation_(options.formulation),
+      material_(material),
+      surface_(std::move(surface)),
+      volume_(cloud.volume) {
+  if (formulation_ != Formulation::classical && surface_.in_band.size() != cloud.size())
+    throw std::invalid_argument("CorrespondenceModel: the improved and strong formulations need surface data");
+  if (formulation_ == Formulation::classical) surface_ = Surface{};
   const BondWeights weights = bond_weights(cloud, families, options.influence);
   G_ = GradientOperator(cloud, families, weights);
   if (options.stabilization > 0.0) {
@@ -18,6 +36,7 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
   }
   H_.resize(particles() * dim_ * dim_);
   Q_.resize(particles() * dim_ * dim_);
+  if (formulation_ != Formulation::classical) P_.resize(particles() * dim_ * dim_);
 }
 
 void CorrespondenceModel::gradient(const double* u, double* H) const { G_.apply(u, dim_, H); }
@@ -26,13 +45,33 @@ void CorrespondenceModel::internal_force(const double* u, double* f) {
   const int d2 = dim_ * dim_;
   const std::size_t n = particles();
   G_.apply(u, dim_, H_.data());
+  const bool strong_rows = formulation_ != Formulation::classical;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     double* q = Q_.data() + i * d2;
     material_.stress(H_.data() + i * d2, q);
+    if (strong_rows) std::copy(q, q + d2, P_.data() + i * d2);
     for (int k = 0; k < d2; ++k) q[k] *= volume_[i];
   }
-  G_.apply_transpose(Q_.data(), dim_, f);
+  if (!strong_rows) {
+    G_.apply_transpose(Q_.data(), dim_, f);
+  } else {
+    G_.apply_transpose(Q_.data(), dim_, f, &surface_.interior);
+    G_.divergence(P_.data(), dim_, f, &surface_.band);
+    const auto& band = surface_.band;
+    const int d = dim_;
+#pragma omp parallel for schedule(static)
+    for (std::size_t r = 0; r < band.size(); ++r) {
+      const std::size_t i = band[r];
+      const double* P = P_.data() + i * d2;
+      const double* m = surface_.normal_over_h.data() + i * d;
+      for (int a = 0; a < d; ++a) {
+        double Pm = 0.0;
+        for (int b = 0; b < d; ++b) Pm += P[a * d + b] * m[b];
+        f[i * d + a] = -volume_[i] * (f[i * d + a] - Pm);
+      }
+    }
+  }
   if (S_) S_->apply_add(u, dim_, f);
 }
 
@@ -61,14 +100,21 @@ std::vector<double> CorrespondenceModel::lumped_mass() const {
 std::vector<double> CorrespondenceModel::stiffness_row_sums() const {
   std::vector<double> C(dim_ * dim_ * dim_ * dim_);
   material_.tangent(C.data());
-  return tangent_row_abs_sums(G_, PointwiseTangent{C.data(), 0, volume_.data()}, S());
+  const StrongRows strong{surface_.in_band.data(), surface_.normal_over_h.data()};
+  return tangent_row_abs_sums(G_, PointwiseTangent{C.data(), 0, volume_.data()}, S(),
+                              formulation_ == Formulation::classical ? nullptr : &strong);
 }
 
 std::vector<std::pair<std::string, std::size_t>> CorrespondenceModel::memory() const {
   std::vector<std::pair<std::string, std::size_t>> m;
   m.emplace_back("gradient operator G and G^T", G_.memory_bytes());
   if (S_) m.emplace_back("stabilization S", S_->memory_bytes());
-  m.emplace_back("workspaces (grad u, V.P)", (H_.size() + Q_.size()) * sizeof(double));
+  m.emplace_back("workspaces (grad u, V.P, P)", (H_.size() + Q_.size() + P_.size()) * sizeof(double));
+  if (formulation_ != Formulation::classical)
+    m.emplace_back("surface normals and band E",
+                   surface_.normal_over_h.size() * sizeof(double) +
+                       2 * surface_.in_band.size() * sizeof(std::uint8_t) +
+                       (surface_.band.size() + surface_.interior.size()) * sizeof(ParticleId));
   return m;
 }
 

@@ -27,11 +27,16 @@ void gather_gradient(std::size_t n, const Offset* off, const ParticleId* col, co
   }
 }
 
+// Rows are all of 0..n-1, or the n ids in `rows`.
+inline std::size_t row_of(const ParticleId* rows, std::size_t r) { return rows ? rows[r] : r; }
+
 template <int D, int NC>
-void gather_divergence(std::size_t n, const Offset* off, const ParticleId* col, const double* w,
-                       const double* diag, const double* q, double* out) {
+void gather_transpose(std::size_t n, const ParticleId* rows, const Offset* off,
+                      const ParticleId* col, const double* w, const double* diag,
+                      const double* q, double* out) {
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t r = 0; r < n; ++r) {
+    const std::size_t i = row_of(rows, r);
     double acc[NC] = {};
     const double* qi = q + i * NC * D;
     for (int c = 0; c < NC; ++c)
@@ -41,6 +46,24 @@ void gather_divergence(std::size_t n, const Offset* off, const ParticleId* col, 
       const double* g = w + k * D;
       for (int c = 0; c < NC; ++c)
         for (int b = 0; b < D; ++b) acc[c] += g[b] * qm[c * D + b];
+    }
+    for (int c = 0; c < NC; ++c) out[i * NC + c] = acc[c];
+  }
+}
+
+template <int D, int NC>
+void gather_divergence(std::size_t n, const ParticleId* rows, const Offset* off,
+                       const ParticleId* col, const double* w, const double* q, double* out) {
+#pragma omp parallel for schedule(static)
+  for (std::size_t r = 0; r < n; ++r) {
+    const std::size_t i = row_of(rows, r);
+    double acc[NC] = {};
+    const double* qi = q + i * NC * D;
+    for (Offset k = off[i]; k < off[i + 1]; ++k) {
+      const double* qj = q + static_cast<std::size_t>(col[k]) * NC * D;
+      const double* g = w + k * D;
+      for (int c = 0; c < NC; ++c)
+        for (int b = 0; b < D; ++b) acc[c] += (qj[c * D + b] - qi[c * D + b]) * g[b];
     }
     for (int c = 0; c < NC; ++c) out[i * NC + c] = acc[c];
   }
@@ -95,18 +118,32 @@ void GradientOperator::apply(const double* f, int nc, double* out) const {
   unsupported(dim_, nc);
 }
 
-void GradientOperator::apply_transpose(const double* q, int nc, double* out) const {
-  const std::size_t n = rows();
+void GradientOperator::apply_transpose(const double* q, int nc, double* out,
+                                       const std::vector<ParticleId>* subset) const {
+  const std::size_t n = subset ? subset->size() : rows();
+  const ParticleId* r = subset ? subset->data() : nullptr;
   const Offset* off = t_offsets_.data();
   const ParticleId* col = t_cols_.data();
   const double* w = t_w_.data();
   const double* dg = diag_.data();
-  if (dim_ == 2 && nc == 1) return gather_divergence<2, 1>(n, off, col, w, dg, q, out);
-  if (dim_ == 2 && nc == 2) return gather_divergence<2, 2>(n, off, col, w, dg, q, out);
-  if (dim_ == 2 && nc == 4) return gather_divergence<2, 4>(n, off, col, w, dg, q, out);
-  if (dim_ == 3 && nc == 1) return gather_divergence<3, 1>(n, off, col, w, dg, q, out);
-  if (dim_ == 3 && nc == 3) return gather_divergence<3, 3>(n, off, col, w, dg, q, out);
-  if (dim_ == 3 && nc == 9) return gather_divergence<3, 9>(n, off, col, w, dg, q, out);
+  if (dim_ == 2 && nc == 1) return gather_transpose<2, 1>(n, r, off, col, w, dg, q, out);
+  if (dim_ == 2 && nc == 2) return gather_transpose<2, 2>(n, r, off, col, w, dg, q, out);
+  if (dim_ == 3 && nc == 1) return gather_transpose<3, 1>(n, r, off, col, w, dg, q, out);
+  if (dim_ == 3 && nc == 3) return gather_transpose<3, 3>(n, r, off, col, w, dg, q, out);
+  unsupported(dim_, nc);
+}
+
+void GradientOperator::divergence(const double* q, int nc, double* out,
+                                  const std::vector<ParticleId>* subset) const {
+  const std::size_t n = subset ? subset->size() : rows();
+  const ParticleId* r = subset ? subset->data() : nullptr;
+  const Offset* off = offsets_.data();
+  const ParticleId* col = cols_.data();
+  const double* w = w_.data();
+  if (dim_ == 2 && nc == 1) return gather_divergence<2, 1>(n, r, off, col, w, q, out);
+  if (dim_ == 2 && nc == 2) return gather_divergence<2, 2>(n, r, off, col, w, q, out);
+  if (dim_ == 3 && nc == 1) return gather_divergence<3, 1>(n, r, off, col, w, q, out);
+  if (dim_ == 3 && nc == 3) return gather_divergence<3, 3>(n, r, off, col, w, q, out);
   unsupported(dim_, nc);
 }
 

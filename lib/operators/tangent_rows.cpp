@@ -9,7 +9,8 @@ namespace perinom {
 void for_each_tangent_row(
     const GradientOperator& G, const PointwiseTangent& tangent, const ScalarCsr* S,
     const std::function<void(std::size_t, const std::vector<ParticleId>&,
-                             const std::vector<double>&)>& visit) {
+                             const std::vector<double>&)>& visit,
+    const StrongRows* strong) {
   const int d = G.dim(), d2 = d * d, d3 = d2 * d;
   const std::size_t n = G.rows();
   const auto& off = G.offsets();
@@ -20,16 +21,17 @@ void for_each_tangent_row(
   {
     RowAccumulator acc(n, d2);
     std::vector<double> T(d3), blocks;
-    // Adds V_m G[m][i] C_m G[m][j] for j in {m} + H_m, given gmi = G[.][m][i].
-    auto add_source = [&](std::size_t m, const double* gmi) {
+    double coef[3];
+    // Adds sum_b coef[b] C_m[a b c e] G_e[m][j] for j in {m} + H_m: the row's dependence
+    // on u through the stress P_m, weighted by coef (a d-vector, volume included).
+    auto add_source = [&](std::size_t m, const double* coef) {
       const double* C = tangent.C + tangent.stride * m;
-      // T[a][c][e] = V_m sum_b gmi[b] C[a][b][c][e]
       for (int a = 0; a < d; ++a)
         for (int c = 0; c < d; ++c)
           for (int e = 0; e < d; ++e) {
             double s = 0.0;
-            for (int b = 0; b < d; ++b) s += gmi[b] * C[((a * d + b) * d + c) * d + e];
-            T[(a * d + c) * d + e] = tangent.volume[m] * s;
+            for (int b = 0; b < d; ++b) s += coef[b] * C[((a * d + b) * d + c) * d + e];
+            T[(a * d + c) * d + e] = s;
           }
       auto add_column = [&](ParticleId j, const double* gmj) {
         double* K = acc.at(j);
@@ -44,8 +46,24 @@ void for_each_tangent_row(
     };
 #pragma omp for schedule(dynamic, 64)
     for (std::size_t i = 0; i < n; ++i) {
-      add_source(i, G.diagonal(i));
-      for (Offset t = toff[i]; t < toff[i + 1]; ++t) add_source(tcols[t], G.dual_weight(t));
+      if (strong && strong->in_band[i]) {
+        const double vi = tangent.volume[i];
+        const double* mi = strong->normal_over_h + i * d;
+        for (int b = 0; b < d; ++b) coef[b] = -vi * G.diagonal(i)[b] + vi * mi[b];
+        add_source(i, coef);
+        for (Offset k = off[i]; k < off[i + 1]; ++k) {
+          for (int b = 0; b < d; ++b) coef[b] = -vi * G.weight(k)[b];
+          add_source(cols[k], coef);
+        }
+      } else {
+        for (int b = 0; b < d; ++b) coef[b] = tangent.volume[i] * G.diagonal(i)[b];
+        add_source(i, coef);
+        for (Offset t = toff[i]; t < toff[i + 1]; ++t) {
+          const std::size_t m = tcols[t];
+          for (int b = 0; b < d; ++b) coef[b] = tangent.volume[m] * G.dual_weight(t)[b];
+          add_source(m, coef);
+        }
+      }
       if (S)
         for (Offset k = S->offsets[i]; k < S->offsets[i + 1]; ++k) {
           double* K = acc.at(S->cols[k]);
@@ -62,7 +80,7 @@ void for_each_tangent_row(
 }
 
 std::vector<double> tangent_row_abs_sums(const GradientOperator& G, const PointwiseTangent& t,
-                                         const ScalarCsr* S) {
+                                         const ScalarCsr* S, const StrongRows* strong) {
   const int d = G.dim();
   std::vector<double> sums(G.rows() * d, 0.0);
   for_each_tangent_row(G, t, S,
@@ -72,7 +90,8 @@ std::vector<double> tangent_row_abs_sums(const GradientOperator& G, const Pointw
                            for (int a = 0; a < d; ++a)
                              for (int c = 0; c < d; ++c)
                                sums[i * d + a] += std::abs(blocks[(k * d + a) * d + c]);
-                       });
+                       },
+                       strong);
   return sums;
 }
 

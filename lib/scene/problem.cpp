@@ -103,8 +103,16 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
   CorrespondenceOptions opt;
   opt.influence = s.discretization.weight;
   opt.stabilization = s.model.stabilization;
+  parse_formulation(s.model.formulation, opt.formulation);
+  Surface surface;
+  if (opt.formulation != Formulation::classical) {
+    // E: within 2 delta of the surface (THEORY sec. 5); the strong form makes E everything.
+    const double delta = *std::max_element(families.support.begin(), families.support.end());
+    surface = find_surface(s.geometry, p.cloud,
+                           opt.formulation == Formulation::strong ? INFINITY : 2.0 * delta);
+  }
   try {
-    p.model = std::make_unique<CorrespondenceModel>(p.cloud, families, s.material, opt);
+    p.model = std::make_unique<CorrespondenceModel>(p.cloud, families, s.material, opt, std::move(surface));
   } catch (const InputError& e) {
     throw InputError(s.source + ": " + horizon_key + ": " + e.what());
   }

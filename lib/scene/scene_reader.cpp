@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "perinom/core/error.hpp"
+#include "perinom/models/correspondence.hpp"
 #include "perinom/scene/scene.hpp"
 #include "yaml_fields.hpp"
 
@@ -101,8 +102,9 @@ void read_model(Fields f, Scene& s) {
   s.model.type = f.text("type", "correspondence");
   if (s.model.type != "correspondence") f.fail("type", "unknown model type (known: correspondence)");
   s.model.formulation = f.text("formulation", "classical");
-  if (s.model.formulation != "classical")
-    f.fail("formulation", "unknown formulation (known: classical; improved is not implemented yet)");
+  Formulation parsed;
+  if (!parse_formulation(s.model.formulation, parsed))
+    f.fail("formulation", "must be classical, improved or strong");
   s.model.stabilization = f.number("stabilization", 0.5);
   if (s.model.stabilization < 0.0) f.fail("stabilization", "must be zero or positive");
   f.finish();

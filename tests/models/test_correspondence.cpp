@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include "../support/clouds.hpp"
+#include "perinom/geometry/surface.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/neighbors/search.hpp"
 #include "perinom/operators/tangent_rows.hpp"
@@ -105,9 +106,18 @@ TEST_CASE("the internal force is the derivative of the stored energy", "[models]
 }
 
 TEST_CASE("the assembled tangent rows equal the derivative of the force", "[models][operators]") {
-  for (const Case& k : cases) {
-    const PointCloud c = test::lattice(k.dim, k.dim == 2 ? 7 : 4, 0.3);
-    CorrespondenceModel model(c, families(c, k.knn), material(k.dim, k.plane), {Influence::inverse_square, 0.5});
+  for (const Case& k : cases)
+  for (const Formulation form : {Formulation::classical, Formulation::improved, Formulation::strong}) {
+    const int side = k.dim == 2 ? 9 : 5;
+    const PointCloud c = test::lattice(k.dim, side, 0.3);
+    BoxGeometry box;
+    box.dim = k.dim;
+    for (int a = 0; a < k.dim; ++a) box.max[a] = side;
+    // A band of 2 spacings leaves both strong (E) and weak (D) rows in these small clouds.
+    Surface surface = find_surface(box, c, form == Formulation::strong ? INFINITY : 2.0);
+    if (form == Formulation::improved) REQUIRE(!surface.interior.empty());
+    CorrespondenceModel model(c, families(c, k.knn), material(k.dim, k.plane),
+                              {Influence::inverse_square, 0.5, form}, surface);
     const int d = k.dim;
     const std::size_t n = model.dofs();
     // The model is linear: column m of K is f(e_m).
@@ -121,13 +131,16 @@ TEST_CASE("the assembled tangent rows equal the derivative of the force", "[mode
     std::vector<double> C(d * d * d * d);
     model.material().tangent(C.data());
     std::vector<double> assembled(n * n, 0.0);
+    const StrongRows strong{model.surface().in_band.data(), model.surface().normal_over_h.data()};
     for_each_tangent_row(model.G(), {C.data(), 0, model.volume().data()}, model.S(),
                          [&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
                            for (std::size_t q = 0; q < cols.size(); ++q)
                              for (int a = 0; a < d; ++a)
                                for (int b = 0; b < d; ++b)
                                  assembled[(i * d + a) * n + cols[q] * d + b] = blocks[(q * d + a) * d + b];
-                         });
+                         },
+                         form == Formulation::classical ? nullptr : &strong);
+    INFO("dim " << d << " formulation " << int(form));
     double err = 0.0, scale = test::max_abs(K);
     for (std::size_t m = 0; m < n * n; ++m) err = std::max(err, std::abs(K[m] - assembled[m]));
     CHECK(err <= 1e-11 * scale);

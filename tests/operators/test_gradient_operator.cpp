@@ -47,7 +47,7 @@ TEST_CASE("the transposed product is the adjoint of the gradient product", "[ope
     for (bool knn : {false, true}) {
       const Families f = knn ? knn_families(c, dim == 2 ? 9 : 20) : radius_families(c, 2.015);
       const GradientOperator G = make_G(c, f, Influence::inverse_square);
-      for (int nc : {1, dim, dim * dim}) {
+      for (int nc : {1, dim}) {
         const auto u = test::random_field(c.size() * nc, 1.0, 1);
         const auto q = test::random_field(c.size() * nc * dim, 1.0, 2);
         std::vector<double> Gu(q.size()), Gtq(u.size());

@@ -1,12 +1,10 @@
 #include <catch2/catch.hpp>
 
-#include <Eigen/Dense>
-
 #include "../support/clouds.hpp"
+#include "../support/direct_solve.hpp"
 #include "perinom/core/error.hpp"
 #include "perinom/scene/problem.hpp"
 #include "perinom/solvers/adr.hpp"
-#include "perinom/operators/tangent_rows.hpp"
 
 using namespace perinom;
 
@@ -29,30 +27,6 @@ probes:
   - {name: tip, point: [0.06, 0.006], field: displacement, component: x}
 )";
 
-/// The same discrete system solved directly: K u = f on the free dofs.
-std::vector<double> direct_solve(const Problem& p) {
-  const int d = p.cloud.dim;
-  const std::size_t n = p.model->dofs();
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
-  std::vector<double> C(d * d * d * d);
-  p.model->material().tangent(C.data());
-  for_each_tangent_row(p.model->G(), {C.data(), 0, p.model->volume().data()}, p.model->S(),
-                       [&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
-                         for (std::size_t q = 0; q < cols.size(); ++q)
-                           for (int a = 0; a < d; ++a)
-                             for (int b = 0; b < d; ++b) K(i * d + a, cols[q] * d + b) = blocks[(q * d + a) * d + b];
-                       });
-  Eigen::VectorXd f = Eigen::Map<const Eigen::VectorXd>(p.loading.force.data(), n);
-  for (const auto dof : p.loading.fixed) {
-    K.row(dof).setZero();
-    K.col(dof).setZero();
-    K(dof, dof) = 1.0;
-    f[dof] = 0.0;
-  }
-  const Eigen::VectorXd u = K.partialPivLu().solve(f);
-  return std::vector<double>(u.data(), u.data() + n);
-}
-
 }  // namespace
 
 TEST_CASE("ADR converges on a small bar to the direct solution and near the analytic one", "[solvers]") {
@@ -63,7 +37,7 @@ TEST_CASE("ADR converges on a small bar to the direct solution and near the anal
   opt.displacement_tolerance = 1e-12;
   const SolveReport rep = solve_adr(*p.model, p.loading, opt, u);
   REQUIRE(rep.converged);
-  const auto ref = direct_solve(p);
+  const auto ref = test::direct_solve(*p.model, p.loading);
   double err = 0.0;
   for (std::size_t k = 0; k < u.size(); ++k) err = std::max(err, std::abs(u[k] - ref[k]));
   CHECK(err <= 1e-7 * test::max_abs(ref));

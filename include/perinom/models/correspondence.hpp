@@ -1,10 +1,16 @@
 #pragma once
-/// @file Correspondence (non-ordinary state-based) peridynamics, classical weak form
-/// (THEORY sec. 3-4): f = G^T (V . P(G u)) + S u.
+/// @file Correspondence (non-ordinary state-based) peridynamics (THEORY sec. 3-5).
+/// classical: the weak form everywhere, f = G^T (V . P(G u)) + S u.
+/// improved:  the weak form in D; in the band E within 2 delta of the surface the strong
+///            form f_i = -V_i [(div P)_i - P_i m_i] (m_i the surface normal over the layer
+///            thickness, zero inside), plus S u. Tractions remain loads t V / h.
+/// strong:    the strong form at every particle (E = everything), exact for uniform stress
+///            on irregular clouds too.
 #include <memory>
 #include <optional>
 
 #include "perinom/geometry/point_cloud.hpp"
+#include "perinom/geometry/surface.hpp"
 #include "perinom/materials/linear_elastic.hpp"
 #include "perinom/models/model.hpp"
 #include "perinom/neighbors/families.hpp"
@@ -14,17 +20,25 @@
 
 namespace perinom {
 
+enum class Formulation { classical, improved, strong };
+
+/// Parses "classical", "improved", "strong"; false if unknown.
+bool parse_formulation(const std::string& name, Formulation& f);
+
 /// Options of the correspondence model.
 struct CorrespondenceOptions {
   Influence influence = Influence::inverse_square;
   double stabilization = 0.5;  ///< C_hg (dimensionless); 0 assembles no S
+  Formulation formulation = Formulation::classical;
 };
 
 class CorrespondenceModel : public Model {
  public:
   /// Assembles G (and S when C_hg > 0) once. Throws InputError for a singular shape tensor.
+  /// The improved and strong formulations need the surface data (find_surface).
   CorrespondenceModel(const PointCloud& cloud, const Families& families,
-                      const LinearElastic& material, const CorrespondenceOptions& options);
+                      const LinearElastic& material, const CorrespondenceOptions& options,
+                      Surface surface = {});
 
   std::size_t particles() const override { return volume_.size(); }
   int dofs_per_particle() const override { return dim_; }
@@ -42,14 +56,19 @@ class CorrespondenceModel : public Model {
   const ScalarCsr* S() const { return S_ ? &*S_ : nullptr; }
   const LinearElastic& material() const { return material_; }
   const std::vector<double>& volume() const { return volume_; }
+  Formulation formulation() const { return formulation_; }
+  /// Surface data (empty for the classical formulation).
+  const Surface& surface() const { return surface_; }
 
  private:
   int dim_;
+  Formulation formulation_;
   LinearElastic material_;
+  Surface surface_;
   std::vector<double> volume_;
   GradientOperator G_;
   std::optional<ScalarCsr> S_;
-  std::vector<double> H_, Q_;  // workspaces: grad u and V . P
+  std::vector<double> H_, Q_, P_;  // workspaces: grad u, V . P, and P for strong rows
 };
 
 }  // namespace perinom

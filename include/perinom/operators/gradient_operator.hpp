@@ -31,7 +31,15 @@ class GradientOperator {
 
   /// out[i*nc + c] = sum_b (G_b^T q[:, c, b])_i, q holding N x nc x d values.
   /// For nc = d and q = V.P this is the weak-form internal force (THEORY sec. 3).
-  void apply_transpose(const double* q, int nc, double* out) const;
+  /// With `rows`, only those rows of out are written.
+  void apply_transpose(const double* q, int nc, double* out,
+                       const std::vector<ParticleId>* rows = nullptr) const;
+
+  /// The nonlocal divergence of a tensor field: out[i*nc + c] = sum_b (G_b q[:, c, b])_i
+  /// = sum_j sum_b (q_j - q_i)[c][b] g_ij[b], for q holding N x nc x d values (the strong
+  /// form of THEORY sec. 5 for q = P). With `rows`, only those rows of out are written.
+  void divergence(const double* q, int nc, double* out,
+                  const std::vector<ParticleId>* rows = nullptr) const;
 
   /// Bytes held by the operator (both orientations).
   std::size_t memory_bytes() const;

@@ -1,5 +1,6 @@
 #pragma once
 /// @file Block rows of the stiffness K = G^T (V . C) G + S0 (x) I (THEORY sec. 3-4).
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -18,20 +19,30 @@ struct PointwiseTangent {
   const double* volume = nullptr;
 };
 
+/// Rows in the strong form (THEORY sec. 5): f_i = -V_i [sum_m G[i][m] P_m - P_i m_i] for the
+/// particles with in_band[i] = 1, m_i = normal_over_h (dim values per particle).
+struct StrongRows {
+  const std::uint8_t* in_band = nullptr;
+  const double* normal_over_h = nullptr;
+};
+
 /// Visits every block row i of K: visit(i, cols, blocks), blocks holding one row-major
 /// d x d block per column (K_(i a),(j c) = blocks[k*d*d + a*d + c] for j = cols[k]).
 /// K_(i),(j) = sum_m V_m sum_(b,e) G_b[m][i] C_m[a b c e] G_e[m][j] over m in {i} + H'_i
-/// and j in {m} + H_m, plus S0_ij on the block diagonal. Rows are computed in parallel;
+/// and j in {m} + H_m, plus S0_ij on the block diagonal; a strong row (when `strong` is
+/// given) takes its sources from row i of G instead: -V_i G_b[i][m] for m in {i} + H_i,
+/// plus V_i m_i[b] at m = i. Rows are computed in parallel;
 /// visit is called concurrently from several threads with distinct i.
 /// Cost: sum over m in {i} + H'_i of |H_m| d^3 per row.
 void for_each_tangent_row(
     const GradientOperator& G, const PointwiseTangent& tangent, const ScalarCsr* S,
     const std::function<void(std::size_t, const std::vector<ParticleId>&,
-                             const std::vector<double>&)>& visit);
+                             const std::vector<double>&)>& visit,
+    const StrongRows* strong = nullptr);
 
 /// Row sums of |K| per degree of freedom (N x d values): the Gershgorin bound used by ADR
 /// (its fictitious density) and by Verlet (its stable time step).
 std::vector<double> tangent_row_abs_sums(const GradientOperator& G, const PointwiseTangent& t,
-                                         const ScalarCsr* S);
+                                         const ScalarCsr* S, const StrongRows* strong = nullptr);
 
 }  // namespace perinom
