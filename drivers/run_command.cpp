@@ -63,28 +63,32 @@ void write_history(const std::string& path, const History& h) {
   csv.close();
 }
 
-/// Probe values into the summary; line probes also into probe_NAME.csv.
+/// Probe values into the summary; line probes also into probe_NAME.csv. Prints the point
+/// probes' values.
 Json probe_results(const Problem& p, const std::vector<double>& u, const std::string& dir) {
   const int d = p.cloud.dim;
-  std::vector<double> sigma;
+  std::vector<double> sigma, H(p.cloud.size() * d * d);
   p.model->stress3(u.data(), sigma);
+  p.model->gradient(u.data(), H.data());
+  const ProbeFields fields{p.cloud, u, sigma, H};
   Json out = Json::object();
   for (const auto& probe : p.probes) {
     if (!probe.spec.is_line) {
-      out[probe.spec.name] = probe_value(probe.spec, d, probe.particles[0], u, sigma);
+      const double v = point_probe_value(probe, fields);
+      out[probe.spec.name] = v;
+      std::printf("  %s = %.6e\n", probe.spec.name.c_str(), v);
       continue;
     }
     const std::string file = "probe_" + probe.spec.name + ".csv";
     io::CsvWriter csv(dir + "/" + file);
-    std::vector<std::string> cols = {"s", "x", "y", "z", "ux", "uy", "uz", "von_mises", "value"};
-    csv.header(cols);
+    csv.header({"s", "x", "y", "z", "ux", "uy", "uz", "von_mises", "value"});
     for (std::size_t k = 0; k < probe.particles.size(); ++k) {
       const std::size_t i = probe.particles[k];
       std::vector<double> row(9, 0.0);
       row[0] = probe.along[k];
       for (int a = 0; a < d; ++a) row[1 + a] = p.cloud.x[i * d + a], row[4 + a] = u[i * d + a];
       row[7] = von_mises(sigma.data() + i * 9);
-      row[8] = probe_value(probe.spec, d, i, u, sigma);
+      row[8] = probe_value(probe.spec, i, fields);
       csv.row(row);
     }
     csv.close();
@@ -180,13 +184,6 @@ int run(const Options& opt) {
     std::printf("perinom: %s after %lld iterations (residual %.3e); results in %s\n",
                 rep.converged ? "converged" : "NOT converged", static_cast<long long>(rep.iterations),
                 rep.residual, dir.c_str());
-  for (const auto& probe : p.probes)
-    if (!probe.spec.is_line) {
-      std::vector<double> sigma;
-      p.model->stress3(u.data(), sigma);
-      std::printf("  %s = %.6e\n", probe.spec.name.c_str(),
-                  probe_value(probe.spec, scene.dim, probe.particles[0], u, sigma));
-    }
   return rep.converged ? 0 : 1;
 }
 

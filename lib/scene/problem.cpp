@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
 
 #include "perinom/core/error.hpp"
@@ -10,7 +11,10 @@
 namespace perinom {
 namespace {
 
-Loading make_loading(const Scene& s, const PointCloud& cloud) {
+/// The side whose face carries each face-located constraint (axis -1: on the particle).
+using FaceOf = std::map<std::int64_t, Side>;
+
+Loading make_loading(const Scene& s, const PointCloud& cloud, FaceOf& face_of) {
   const int d = s.dim;
   Loading load;
   for (const auto& b : s.boundary) {
@@ -18,7 +22,12 @@ Loading make_loading(const Scene& s, const PointCloud& cloud) {
     if (ids.empty()) throw InputError(b.where + ".region: selects no particle");
     for (int a = 0; a < d; ++a) {
       if (!b.fix[a] && !b.displacement[a]) continue;
-      for (const auto i : ids) load.fix(static_cast<std::int64_t>(i) * d + a, b.displacement[a].value_or(0.0));
+      for (const auto i : ids) {
+        const std::int64_t dof = static_cast<std::int64_t>(i) * d + a;
+        load.fix(dof, b.displacement[a].value_or(0.0));
+        if (b.at_face) face_of[dof] = b.region.side;
+        else face_of.erase(dof);
+      }
     }
     if (!b.traction && !b.pressure) continue;
     // Classical treatment: the traction acts as a body force on the outer layer
@@ -35,6 +44,31 @@ Loading make_loading(const Scene& s, const PointCloud& cloud) {
       for (int a = 0; a < d; ++a) load.force[i * d + a] += t[a] * cloud.volume[i] / h;
   }
   return load;
+}
+
+/// Face-located constraints: u_i + (grad u)_i . r = u_bar with r from the particle to its
+/// face, i.e. u_i (1 - sum_j c_j) + sum_j c_j u_j = u_bar with c_j = g_ij . r.
+void couple_to_faces(Loading& load, const FaceOf& face_of, const BoxGeometry& box,
+                     const PointCloud& cloud, const GradientOperator& G) {
+  const int d = cloud.dim;
+  load.couplings.assign(1, 0);
+  for (std::size_t k = 0; k < load.fixed.size(); ++k) {
+    const auto it = face_of.find(load.fixed[k]);
+    double sum = 0.0;
+    if (it != face_of.end()) {
+      const std::size_t i = load.fixed[k] / d, a = load.fixed[k] % d;
+      const int axis = it->second.axis;
+      const double r = (it->second.at_max ? box.max[axis] : box.min[axis]) - cloud.x[i * d + axis];
+      for (Offset m = G.offsets()[i]; m < G.offsets()[i + 1]; ++m) {
+        const double c = G.weight(m)[axis] * r;
+        load.coupled.push_back(static_cast<std::int64_t>(G.cols()[m]) * d + a);
+        load.coef.push_back(c);
+        sum += c;
+      }
+    }
+    load.scale.push_back(1.0 / (1.0 - sum));
+    load.couplings.push_back(static_cast<Offset>(load.coupled.size()));
+  }
 }
 
 BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud) {
@@ -97,7 +131,8 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
     throw InputError(s.source + ": " + horizon_key + ": " + e.what());
   }
   p.bonds = families.bonds();
-  p.loading = make_loading(s, p.cloud);
+  FaceOf face_of;
+  p.loading = make_loading(s, p.cloud, face_of);
   for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
   if (timer) timer->start("operators");
   CorrespondenceOptions opt;
@@ -116,16 +151,30 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
   } catch (const InputError& e) {
     throw InputError(s.source + ": " + horizon_key + ": " + e.what());
   }
+  if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, p.model->G());
   if (timer) timer->stop();
   return p;
 }
 
-double probe_value(const ProbeSpec& spec, int dim, std::size_t i, const std::vector<double>& u,
-                   const std::vector<double>& sigma) {
-  const auto axis = [](char c) { return c == 'x' ? 0 : c == 'y' ? 1 : 2; };
-  if (spec.field == "displacement") return u[i * dim + axis(spec.component[0])];
-  if (spec.field == "stress") return sigma[i * 9 + axis(spec.component[0]) * 3 + axis(spec.component[1])];
-  return von_mises(sigma.data() + i * 9);
+namespace {
+int axis_of(char c) { return c == 'x' ? 0 : c == 'y' ? 1 : 2; }
+}  // namespace
+
+double probe_value(const ProbeSpec& spec, std::size_t i, const ProbeFields& f) {
+  const int d = f.cloud.dim;
+  if (spec.field == "displacement") return f.u[i * d + axis_of(spec.component[0])];
+  if (spec.field == "stress")
+    return f.sigma[i * 9 + axis_of(spec.component[0]) * 3 + axis_of(spec.component[1])];
+  return von_mises(f.sigma.data() + i * 9);
+}
+
+double point_probe_value(const BoundProbe& probe, const ProbeFields& f) {
+  const std::size_t i = probe.particles.at(0);
+  double v = probe_value(probe.spec, i, f);
+  if (!probe.spec.reconstruct) return v;
+  const int d = f.cloud.dim, a = axis_of(probe.spec.component[0]);
+  for (int b = 0; b < d; ++b) v += f.H[(i * d + a) * d + b] * (probe.spec.point[b] - f.cloud.x[i * d + b]);
+  return v;
 }
 
 }  // namespace perinom

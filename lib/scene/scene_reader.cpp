@@ -101,7 +101,7 @@ void read_material(Fields f, Scene& s) {
 void read_model(Fields f, Scene& s) {
   s.model.type = f.text("type", "correspondence");
   if (s.model.type != "correspondence") f.fail("type", "unknown model type (known: correspondence)");
-  s.model.formulation = f.text("formulation", "classical");
+  s.model.formulation = f.text("formulation", "improved");
   Formulation parsed;
   if (!parse_formulation(s.model.formulation, parsed))
     f.fail("formulation", "must be classical, improved or strong");
@@ -154,6 +154,10 @@ void read_boundary(const std::vector<YAML::Node>& items, const std::string& sour
     }
     if (f.has("traction")) b.traction = f.vector("traction", s.dim);
     if (f.has("pressure")) b.pressure = f.number("pressure");
+    const std::string at = f.text("at", "layer");
+    if (at != "layer" && at != "face") f.fail("at", "must be layer or face");
+    b.at_face = at == "face";
+    if (b.at_face && !b.region.is_side) f.fail("at", "face needs a side region (top, left, ...)");
     if ((b.traction || b.pressure) && !b.region.is_side)
       f.fail("region", "a traction or pressure acts on a side of the box (top, left, ...)");
     f.finish();
@@ -207,6 +211,16 @@ void read_probes(const std::vector<YAML::Node>& items, const std::string& source
       p.point = f.vector("point", s.dim);
     }
     p.field = f.text("field", "displacement");
+    if (f.has("reconstruct")) {
+      f.mark("reconstruct");
+      try {
+        p.reconstruct = f.node("reconstruct").as<bool>();
+      } catch (const YAML::Exception&) {
+        f.fail("reconstruct", "must be true or false");
+      }
+      if (p.reconstruct && (p.is_line || p.field != "displacement"))
+        f.fail("reconstruct", "only point probes of the displacement are reconstructed");
+    }
     if (p.field == "displacement") {
       p.component = f.text("component", p.is_line ? "x" : "");
       if (axis_of(p.component, s.dim) < 0) f.fail("component", "must be x, y" + std::string(s.dim == 3 ? " or z" : ""));

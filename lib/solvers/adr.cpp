@@ -77,6 +77,7 @@ void solve_adr_steps(Model& model, const Loading& loading, const AdrOptions& opt
         u[k] += v[k];
         du2 += v[k] * v[k];
       }
+      if (loading.coupled_constraints()) loading.impose(s, u.data());
       const double un = norm(u);
       du = un > 0.0 ? std::sqrt(du2) / un : std::sqrt(du2);
       f_old.swap(f);

@@ -242,9 +242,15 @@ TEST_CASE("an unknown side name is named with its line", "[cli]") {
   require_rejected(s, {at_line(s, "roof", "boundary[1].region: unknown side 'roof'")});
 }
 
-TEST_CASE("the improved formulation is refused as not implemented", "[cli]") {
-  const std::string s = with(tiny_scene, "boundary:\n", "model: {formulation: improved}\nboundary:\n");
-  require_rejected(s, {at_line(s, "model:", "model.formulation:"), "not implemented"});
+TEST_CASE("an unknown formulation is refused with the known ones", "[cli]") {
+  const std::string s = with(tiny_scene, "boundary:\n", "model: {formulation: improvd}\nboundary:\n");
+  require_rejected(s, {at_line(s, "model:", "model.formulation:"), "classical, improved or strong"});
+}
+
+TEST_CASE("a face-located condition needs a side of the box", "[cli]") {
+  const std::string s = with(tiny_scene, "  - region: bottom\n    fix: [x, y]\n",
+                             "  - region: {box: {min: [0, 0], max: [0.01, 0.001]}}\n    fix: [x, y]\n    at: face\n");
+  require_rejected(s, {"boundary[0].at", "side region"});
 }
 
 TEST_CASE("invalid YAML syntax gives the line of the error", "[cli]") {

@@ -11,13 +11,13 @@
 
 namespace perinom::test {
 
-/// u with u = u_bar on the constrained dofs and K u = f on the others (linear elasticity).
+/// u with the constraints of `loading` (on the particle, or face-located through their
+/// couplings) and K u = f on the other dofs (linear elasticity).
 inline std::vector<double> direct_solve(const CorrespondenceModel& model, const Loading& loading) {
   const int d = model.dofs_per_particle();
   const std::size_t n = model.dofs();
   std::vector<char> fixed(n, 0);
-  std::vector<double> ubar(n, 0.0);
-  for (std::size_t k = 0; k < loading.fixed.size(); ++k) fixed[loading.fixed[k]] = 1, ubar[loading.fixed[k]] = loading.value[k];
+  for (const auto dof : loading.fixed) fixed[dof] = 1;
   std::vector<double> C(d * d * d * d);
   model.material().tangent(C.data());
   const Surface& s = model.surface();
@@ -34,19 +34,27 @@ inline std::vector<double> direct_solve(const CorrespondenceModel& model, const 
             for (int b = 0; b < d; ++b) {
               const std::size_t r = i * d + a, c = cols[q] * d + b;
               const double v = blocks[(q * d + a) * d + b];
-              if (fixed[r]) continue;
-              if (fixed[c]) rows[i].emplace_back(r, n, v * ubar[c]);  // moved to the right side
-              else rows[i].emplace_back(r, c, v);
+              if (!fixed[r]) rows[i].emplace_back(r, c, v);
             }
       },
       model.formulation() == Formulation::classical ? nullptr : &strong);
-  for (auto& r : rows)
-    for (const auto& t : r) {
-      if (t.col() == static_cast<Eigen::Index>(n)) rhs[t.row()] -= t.value();
-      else triplets.push_back(t);
+  for (auto& r : rows) triplets.insert(triplets.end(), r.begin(), r.end());
+  // Constraint rows kappa (u_i / scale + sum_c coef_c u_c) = kappa u_bar, kappa the largest
+  // stiffness diagonal so that the rows are scaled alike (SparseLU pivots by magnitude).
+  double kappa = 0.0;
+  for (const auto& t : triplets)
+    if (t.row() == t.col()) kappa = std::max(kappa, std::abs(t.value()));
+  for (std::size_t k = 0; k < loading.fixed.size(); ++k) {
+    const auto dof = loading.fixed[k];
+    rhs[dof] = kappa * loading.value[k];
+    if (!loading.coupled_constraints()) {
+      triplets.emplace_back(dof, dof, kappa);
+      continue;
     }
-  for (std::size_t k = 0; k < n; ++k)
-    if (fixed[k]) triplets.emplace_back(k, k, 1.0), rhs[k] = ubar[k];
+    triplets.emplace_back(dof, dof, kappa / loading.scale[k]);
+    for (Offset c = loading.couplings[k]; c < loading.couplings[k + 1]; ++c)
+      triplets.emplace_back(dof, loading.coupled[c], kappa * loading.coef[c]);
+  }
   Eigen::SparseMatrix<double> K(n, n);
   K.setFromTriplets(triplets.begin(), triplets.end());
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(K);

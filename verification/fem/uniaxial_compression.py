@@ -25,7 +25,7 @@ Outputs (in this folder; work files go to a temporary folder and are deleted)
                                        szz_pa, sxy_pa at the nodes on x = 0.018, finest mesh.
   uniaxial_compression_fem.png         uy and von Mises along the centre line, every mesh.
 
-Usage: python3 verification/fem/uniaxial_compression.py [--max-seconds S] [--keep DIR]
+Usage: python3 verification/fem/uniaxial_compression.py [--max-seconds S] [--keep DIR] [--out DIR]
 Needs gmsh and CalculiX (Debian: apt-get install gmsh calculix-ccx), python3 with numpy
 and matplotlib (Debian: python3-numpy python3-matplotlib). Runs single-threaded.
 """

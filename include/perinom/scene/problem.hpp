@@ -33,9 +33,20 @@ struct Problem {
 /// singular shape tensor.
 Problem build_problem(const Scene& scene, PhaseTimer* timer = nullptr);
 
-/// The value of a probe's field at particle i (SI units), from the displacement u and the
-/// 3 x 3 stresses sigma (N x 9).
-double probe_value(const ProbeSpec& spec, int dim, std::size_t i, const std::vector<double>& u,
-                   const std::vector<double>& sigma);
+/// The fields probes read: displacement u (N x d), 3 x 3 stresses sigma (N x 9), and the
+/// displacement gradient H (N x d x d) for reconstructed point probes.
+struct ProbeFields {
+  const PointCloud& cloud;
+  const std::vector<double>& u;
+  const std::vector<double>& sigma;
+  const std::vector<double>& H;
+};
+
+/// The value of a probe's field at particle i (SI units).
+double probe_value(const ProbeSpec& spec, std::size_t i, const ProbeFields& f);
+
+/// A point probe's value: at its nearest particle, or, with `reconstruct`, at the probe's
+/// point through that particle's first-order reconstruction u_i + (grad u)_i (x - x_i).
+double point_probe_value(const BoundProbe& probe, const ProbeFields& f);
 
 }  // namespace perinom

@@ -25,7 +25,7 @@ struct DiscretizationSpec {
 
 struct ModelSpec {
   std::string type = "correspondence";
-  std::string formulation = "classical";
+  std::string formulation = "improved";
   double stabilization = 0.5;  ///< C_hg
 };
 
@@ -38,6 +38,7 @@ struct BoundarySpec {
   std::array<std::optional<double>, 3> displacement;  ///< m, at full load
   std::optional<std::array<double, 3>> traction;      ///< Pa, on a side
   std::optional<double> pressure;                     ///< Pa, positive pushes inward
+  bool at_face = false;  ///< displacements prescribed at the box face, not at the particles
 };
 
 struct SolverSpec {
@@ -60,6 +61,7 @@ struct ProbeSpec {
   std::array<double, 3> point{0, 0, 0}, from{0, 0, 0}, to{0, 0, 0};
   std::string field = "displacement";  ///< displacement | stress | von_mises
   std::string component = "x";         ///< x|y|z, or xx|yy|zz|xy|yz|xz for stress
+  bool reconstruct = false;  ///< point displacement probes: u_i + (grad u)_i (x - x_i) at the point
 };
 
 struct OutputSpec {
