@@ -1,6 +1,7 @@
 // perinom run: read a scene, build it, solve it, write VTK, CSV and summary.json.
 #include <omp.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,8 @@
 #include "perinom/io/vtk_writer.hpp"
 #include "perinom/scene/problem.hpp"
 #include "perinom/solvers/adr.hpp"
+#include "perinom/core/timer.hpp"
+#include "perinom/solvers/newton.hpp"
 #include "perinom/solvers/verlet.hpp"
 #include "terminal_progress.hpp"
 
@@ -100,6 +103,50 @@ Json probe_results(const Problem& p, const std::vector<double>& u, const std::st
   return out;
 }
 
+NewtonOptions newton_options(const SolverSpec& s) {
+  NewtonOptions o;
+  o.load_steps = s.load_steps;
+  o.line_search = s.line_search;
+  if (s.type == "newton") o.tolerance = s.tolerance, o.max_iterations = static_cast<int>(s.max_iterations);
+  return o;
+}
+
+/// solver.check: newton. Solves again with Newton and reports how far apart the answers are.
+Json newton_check(Problem& p, const std::vector<double>& u) {
+  std::vector<double> un;
+  const double t0 = wall_seconds();
+  TerminalProgress progress("newton check");
+  const SolveReport rep = solve_newton(*p.model, p.loading, newton_options(p.scene.solver), un, &progress);
+  const double seconds = wall_seconds() - t0;
+  std::vector<double> s, sn;
+  p.model->stress3(u.data(), s);
+  p.model->stress3(un.data(), sn);
+  auto compare = [](const std::vector<double>& a, const std::vector<double>& b, double& rel_l2, double& rel_max) {
+    double d2 = 0, b2 = 0, dmax = 0, bmax = 0;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      d2 += (a[k] - b[k]) * (a[k] - b[k]), b2 += b[k] * b[k];
+      dmax = std::max(dmax, std::abs(a[k] - b[k])), bmax = std::max(bmax, std::abs(b[k]));
+    }
+    rel_l2 = std::sqrt(d2 / b2), rel_max = dmax / bmax;
+  };
+  double u_l2 = 0, u_max = 0, s_l2 = 0, s_max = 0;
+  compare(u, un, u_l2, u_max);
+  compare(s, sn, s_l2, s_max);
+  Json j = Json::object();
+  j["displacement_relative_l2"] = u_l2;
+  j["displacement_relative_max"] = u_max;
+  j["stress_relative_l2"] = s_l2;
+  j["stress_relative_max"] = s_max;
+  j["newton_iterations"] = static_cast<long long>(rep.iterations);
+  j["newton_converged"] = rep.converged;
+  j["newton_residual"] = rep.residual;
+  j["newton_seconds"] = seconds;
+  if (!rep.failure.empty()) j["newton_error"] = rep.failure;
+  std::printf("perinom: Newton check: displacement differs by %.3e, stress by %.3e (relative L2); "
+              "Newton: %lld iterations, %.3f s\n", u_l2, s_l2, static_cast<long long>(rep.iterations), seconds);
+  return j;
+}
+
 }  // namespace
 
 int run(const Options& opt) {
@@ -112,6 +159,7 @@ int run(const Options& opt) {
   Problem p = build_problem(scene, &timer);
   std::printf("perinom: %s: %zu particles, %zu bonds, %d threads, solver %s\n", scene.name.c_str(),
               p.cloud.size(), p.bonds, omp_get_max_threads(), scene.solver.type.c_str());
+  std::fflush(stdout);
 
   io::PvdSeries series(dir, scene.name);
   std::vector<double> u(p.model->dofs(), 0.0), v;
@@ -135,6 +183,8 @@ int run(const Options& opt) {
       o.load_steps = scene.solver.load_steps;
       o.history_every = scene.solver.history_every;
       rep = solve_adr(*p.model, p.loading, o, u, &progress, observe);
+    } else if (scene.solver.type == "newton") {
+      rep = solve_newton(*p.model, p.loading, newton_options(scene.solver), u, &progress);
     } else {
       VerletOptions o;
       o.dt = scene.solver.dt;
@@ -169,6 +219,11 @@ int run(const Options& opt) {
   }
   if (!failure.empty()) solver["error"] = failure;
   summary["solver"] = solver;
+  if (scene.solver.check == "newton" && failure.empty()) {
+    timer.start("newton check");
+    summary["check"] = newton_check(p, u);
+    timer.start("output");
+  }
   summary["probes"] = probe_results(p, u, dir);
   timer.stop();
   Json wall = Json::object();

@@ -24,7 +24,7 @@ void TerminalProgress::update(const ProgressSample& s) {
       left = std::max(0.0, elapsed * todo / done);
       fraction = std::clamp(done / (done + std::max(0.0, todo)), 0.0, 1.0);
     }
-  } else if (s.iteration > 0) {
+  } else if (s.iteration > 0 && s.limit > 0) {
     left = elapsed * double(s.limit - s.iteration) / double(s.iteration);
   }
   if (tty_) {

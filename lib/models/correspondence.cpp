@@ -1,6 +1,7 @@
 #include "perinom/models/correspondence.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "perinom/operators/bond_weights.hpp"
@@ -97,12 +98,25 @@ std::vector<double> CorrespondenceModel::lumped_mass() const {
   return m;
 }
 
-std::vector<double> CorrespondenceModel::stiffness_row_sums() const {
+void CorrespondenceModel::visit_tangent_rows(
+    const std::function<void(std::size_t, const std::vector<ParticleId>&,
+                             const std::vector<double>&)>& visit) const {
   std::vector<double> C(dim_ * dim_ * dim_ * dim_);
   material_.tangent(C.data());
   const StrongRows strong{surface_.in_band.data(), surface_.normal_over_h.data()};
-  return tangent_row_abs_sums(G_, PointwiseTangent{C.data(), 0, volume_.data()}, S(),
-                              formulation_ == Formulation::classical ? nullptr : &strong);
+  for_each_tangent_row(G_, PointwiseTangent{C.data(), 0, volume_.data()}, S(), visit,
+                       formulation_ == Formulation::classical ? nullptr : &strong);
+}
+
+std::vector<double> CorrespondenceModel::stiffness_row_sums() const {
+  const int d = dim_;
+  std::vector<double> sums(particles() * d, 0.0);
+  visit_tangent_rows([&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
+    for (std::size_t k = 0; k < cols.size(); ++k)
+      for (int a = 0; a < d; ++a)
+        for (int c = 0; c < d; ++c) sums[i * d + a] += std::abs(blocks[(k * d + a) * d + c]);
+  });
+  return sums;
 }
 
 std::vector<std::pair<std::string, std::size_t>> CorrespondenceModel::memory() const {

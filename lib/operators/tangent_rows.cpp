@@ -1,7 +1,5 @@
 #include "perinom/operators/tangent_rows.hpp"
 
-#include <cmath>
-
 #include "perinom/operators/row_accumulator.hpp"
 
 namespace perinom {
@@ -77,22 +75,6 @@ void for_each_tangent_row(
       acc.clear();
     }
   }
-}
-
-std::vector<double> tangent_row_abs_sums(const GradientOperator& G, const PointwiseTangent& t,
-                                         const ScalarCsr* S, const StrongRows* strong) {
-  const int d = G.dim();
-  std::vector<double> sums(G.rows() * d, 0.0);
-  for_each_tangent_row(G, t, S,
-                       [&](std::size_t i, const std::vector<ParticleId>& cols,
-                           const std::vector<double>& blocks) {
-                         for (std::size_t k = 0; k < cols.size(); ++k)
-                           for (int a = 0; a < d; ++a)
-                             for (int c = 0; c < d; ++c)
-                               sums[i * d + a] += std::abs(blocks[(k * d + a) * d + c]);
-                       },
-                       strong);
-  return sums;
 }
 
 }  // namespace perinom

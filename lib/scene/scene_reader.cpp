@@ -168,7 +168,9 @@ void read_boundary(const std::vector<YAML::Node>& items, const std::string& sour
 void read_solver(Fields f, Scene& s) {
   auto& v = s.solver;
   v.type = f.text("type", "adr");
-  if (v.type != "adr" && v.type != "verlet") f.fail("type", "must be adr or verlet");
+  if (v.type != "adr" && v.type != "verlet" && v.type != "newton") f.fail("type", "must be adr, verlet or newton");
+  const bool newton = v.type == "newton";
+  if (newton) v.tolerance = 1e-10, v.max_iterations = 50;
   v.tolerance = f.number("tolerance", v.tolerance);
   if (!(v.tolerance > 0.0)) f.fail("tolerance", "must be positive");
   v.displacement_tolerance = f.number("displacement_tolerance", v.displacement_tolerance);
@@ -187,6 +189,18 @@ void read_solver(Fields f, Scene& s) {
   if (v.ramp_time < 0.0) f.fail("ramp_time", "must be zero or positive");
   v.history_every = f.integer("history_every", v.history_every);
   if (v.history_every < 1) f.fail("history_every", "must be at least 1");
+  if (f.has("line_search")) {
+    f.mark("line_search");
+    try {
+      v.line_search = f.node("line_search").as<bool>();
+    } catch (const YAML::Exception&) {
+      f.fail("line_search", "must be true or false");
+    }
+  }
+  v.check = f.text("check", "none");
+  if (v.check != "none" && v.check != "newton") f.fail("check", "must be none or newton");
+  if (v.check == "newton" && v.type != "adr") f.fail("check", "the Newton check compares static answers: it needs solver.type adr");
+  if (newton && v.max_iterations > 1000000000) f.fail("max_iterations", "is out of range");
   f.finish();
 }
 

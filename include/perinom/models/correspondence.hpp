@@ -6,6 +6,7 @@
 ///            thickness, zero inside), plus S u. Tractions remain loads t V / h.
 /// strong:    the strong form at every particle (E = everything), exact for uniform stress
 ///            on irregular clouds too.
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -47,6 +48,12 @@ class CorrespondenceModel : public Model {
   std::vector<double> lumped_mass() const override;
   std::vector<double> stiffness_row_sums() const override;
   std::vector<std::pair<std::string, std::size_t>> memory() const override;
+
+  /// Visits the block rows of the stiffness dF/du (THEORY sec. 3-5): the weak rows
+  /// G^T (V . C) G, the strong rows of the band E for the improved and strong formulations,
+  /// plus S. See for_each_tangent_row for the arguments of visit.
+  void visit_tangent_rows(const std::function<void(std::size_t, const std::vector<ParticleId>&,
+                                                   const std::vector<double>&)>& visit) const;
 
   /// grad u at every particle (N x d x d), and the 3 x 3 Cauchy stress (N x 9).
   void gradient(const double* u, double* H) const;

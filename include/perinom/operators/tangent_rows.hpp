@@ -40,9 +40,4 @@ void for_each_tangent_row(
                              const std::vector<double>&)>& visit,
     const StrongRows* strong = nullptr);
 
-/// Row sums of |K| per degree of freedom (N x d values): the Gershgorin bound used by ADR
-/// (its fictitious density) and by Verlet (its stable time step).
-std::vector<double> tangent_row_abs_sums(const GradientOperator& G, const PointwiseTangent& t,
-                                         const ScalarCsr* S, const StrongRows* strong = nullptr);
-
 }  // namespace perinom

@@ -52,6 +52,8 @@ struct SolverSpec {
   std::int64_t steps = 1000;
   double ramp_time = 0.0;
   std::int64_t history_every = 10;
+  bool line_search = true;    ///< Newton
+  std::string check = "none"; ///< "newton": also solve with Newton and report the difference
 };
 
 struct ProbeSpec {

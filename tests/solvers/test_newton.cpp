@@ -1,0 +1,109 @@
+#include <catch2/catch.hpp>
+
+#include "../support/clouds.hpp"
+#include "../support/direct_solve.hpp"
+#include "perinom/core/error.hpp"
+#include "perinom/scene/problem.hpp"
+#include "perinom/solvers/jacobian.hpp"
+#include "perinom/solvers/newton.hpp"
+
+using namespace perinom;
+
+namespace {
+
+std::string plate(const char* formulation, const char* at, bool supported = true) {
+  return std::string(R"(
+name: plate
+dimension: 2
+geometry: {box: {min: [0, 0], max: [0.012, 0.024]}}
+discretization: {dx: 0.001, horizon: {ratio: 3.015}, jitter: 0.2}
+material: {type: linear_elastic, E: 30.0e6, nu: 0.25, density: 2000, plane: strain}
+model: {formulation: )") + formulation + R"(}
+boundary:
+)" + (supported ? std::string("  - {region: bottom, fix: [x, y], at: ") + at + "}\n" : std::string()) + R"(  - {region: top, pressure: 2.0e5}
+  - {region: right, traction: [3.0e4, 1.0e4]}
+)";
+}
+
+double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) d = std::max(d, std::abs(a[k] - b[k]));
+  return d / test::max_abs(b);
+}
+
+}  // namespace
+
+TEST_CASE("the assembled Jacobian is the derivative of the residual", "[solvers][newton]") {
+  for (const char* form : {"classical", "improved", "strong"})
+    for (const char* at : {"layer", "face"}) {
+      Problem p = build_problem(parse_scene(plate(form, at), "plate"));
+      StaticSystem system(*p.model, p.loading);
+      system.assemble(nullptr);
+      const CsrMatrix& J = system.jacobian();
+      const auto u = test::random_field(system.dofs(), 1e-4, 1);
+      const auto v = test::random_field(system.dofs(), 1e-4, 2);
+      // The residual is affine in u, so R(u + v) - R(u) = J v up to rounding.
+      std::vector<double> Ru(u.size()), Ruv(u.size()), uv(u), Jv(u.size(), 0.0);
+      for (std::size_t k = 0; k < u.size(); ++k) uv[k] += v[k];
+      system.residual(u.data(), 0.7, Ru.data());
+      system.residual(uv.data(), 0.7, Ruv.data());
+      for (std::int64_t r = 0; r < J.rows; ++r) {
+        for (std::int64_t s = J.row_ptr[r]; s < J.row_ptr[r + 1]; ++s) Jv[r] += J.val[s] * v[J.col[s]];
+        if (r > 0 && J.row_ptr[r] < J.row_ptr[r + 1]) REQUIRE(std::is_sorted(J.col.begin() + J.row_ptr[r], J.col.begin() + J.row_ptr[r + 1]));
+      }
+      double err = 0.0, scale = 0.0;
+      for (std::size_t k = 0; k < u.size(); ++k) err = std::max(err, std::abs(Ruv[k] - Ru[k] - Jv[k])), scale = std::max(scale, std::abs(Jv[k]));
+      INFO(form << ", " << at);
+      CHECK(err <= 1e-9 * scale);
+    }
+}
+
+TEST_CASE("Newton converges in one iteration on a linear problem, to the direct solution", "[solvers][newton]") {
+  for (const char* form : {"classical", "improved"})
+    for (const char* at : {"layer", "face"}) {
+      Problem p = build_problem(parse_scene(plate(form, at), "plate"));
+      std::vector<double> u;
+      NewtonOptions opt;
+      opt.line_search = false;
+      const SolveReport rep = solve_newton(*p.model, p.loading, opt, u);
+      INFO(form << ", " << at << ": " << rep.failure);
+      REQUIRE(rep.converged);
+      CHECK(rep.iterations == 1);
+      CHECK(rep.residual < 1e-10);
+      CHECK(relative_difference(u, test::direct_solve(*p.model, p.loading)) < 1e-9);
+    }
+}
+
+TEST_CASE("load steps reuse the factorization and end at the same answer", "[solvers][newton]") {
+  Problem p = build_problem(parse_scene(plate("improved", "face"), "plate"));
+  std::vector<double> one, four;
+  NewtonOptions opt;
+  REQUIRE(solve_newton(*p.model, p.loading, opt, one).converged);
+  opt.load_steps = 4;
+  const SolveReport rep = solve_newton(*p.model, p.loading, opt, four);
+  REQUIRE(rep.converged);
+  CHECK(rep.history.rows.size() == 4);
+  CHECK(rep.iterations == 4);
+  CHECK(relative_difference(four, one) < 1e-9);
+}
+
+TEST_CASE("ADR and Newton agree on the demo scene at a tight ADR tolerance", "[solvers][newton]") {
+  Problem p = build_problem(read_scene(PERINOM_SOURCE_DIR "/examples/uniaxial_compression.yaml"));
+  std::vector<double> ua, un;
+  AdrOptions adr;
+  adr.tolerance = 1e-11;
+  adr.displacement_tolerance = 1e-13;
+  REQUIRE(solve_adr(*p.model, p.loading, adr, ua).converged);
+  REQUIRE(solve_newton(*p.model, p.loading, NewtonOptions{}, un).converged);
+  double d2 = 0.0, n2 = 0.0;
+  for (std::size_t k = 0; k < ua.size(); ++k) d2 += (ua[k] - un[k]) * (ua[k] - un[k]), n2 += un[k] * un[k];
+  WARN("demo: ADR (tolerance 1e-11) and Newton differ by " << std::sqrt(d2 / n2) << " (relative L2)");
+  CHECK(std::sqrt(d2 / n2) < 1e-6);
+}
+
+TEST_CASE("a body free to move rigidly is reported as a missing boundary condition", "[solvers][newton]") {
+  Problem p = build_problem(parse_scene(plate("improved", "layer", false), "plate"));
+  std::vector<double> u;
+  CHECK_THROWS_WITH(solve_newton(*p.model, p.loading, NewtonOptions{}, u),
+                    Catch::Contains("singular") && Catch::Contains("boundary condition is probably missing"));
+}
