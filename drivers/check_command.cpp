@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "perinom/core/error.hpp"
 #include "perinom/scene/problem.hpp"
+#include "perinom/solvers/jacobian.hpp"
 
 namespace perinom::cli {
 
@@ -40,7 +41,18 @@ int check(const Options& opt) {
   std::printf("    %-30s %10.2f MiB\n", "solver state (u, v, f, ...)",
               mb(p.model->dofs() * 6 * sizeof(double)));
   total += p.model->dofs() * 6 * sizeof(double);
-  std::printf("  not assembled: Hessian (no second-order model), Newton tangent (no newton solver)%s\n",
+  const bool newton = scene.solver.type == "newton" || scene.solver.check == "newton";
+  if (newton) {
+    // The Jacobian's pattern, as the Newton solver will build it (values included).
+    const StaticSystem system(*p.model, p.loading);
+    const std::size_t bytes = system.jacobian().memory_bytes();
+    std::printf("    %-30s %10.2f MiB  (%zu nonzeros; KLU's factors come on top, typically\n"
+                "    %-30s several times this in 2-D and more in 3-D)\n",
+                "Newton Jacobian (CSR, 64-bit)", mb(bytes), system.jacobian().col.size(), "");
+    total += bytes;
+  }
+  std::printf("  not assembled: Hessian (no second-order model)%s%s\n",
+              newton ? "" : ", Newton Jacobian (no newton solver)",
               scene.model.stabilization > 0.0 ? "" : ", stabilization S (C_hg = 0)");
   std::printf("  total           %.2f MiB (%.1f bytes per bond)\n", mb(total), double(total) / p.bonds);
   for (const auto& probe : p.probes)
