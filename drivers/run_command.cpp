@@ -107,6 +107,7 @@ NewtonOptions newton_options(const SolverSpec& s) {
   NewtonOptions o;
   o.load_steps = s.load_steps;
   o.line_search = s.line_search;
+  o.step_tolerance = s.step_tolerance;
   if (s.type == "newton") o.tolerance = s.tolerance, o.max_iterations = static_cast<int>(s.max_iterations);
   return o;
 }

@@ -197,6 +197,8 @@ void read_solver(Fields f, Scene& s) {
       f.fail("line_search", "must be true or false");
     }
   }
+  v.step_tolerance = f.number("step_tolerance", v.step_tolerance);
+  if (!(v.step_tolerance > 0.0)) f.fail("step_tolerance", "must be positive");
   v.check = f.text("check", "none");
   if (v.check != "none" && v.check != "newton") f.fail("check", "must be none or newton");
   if (v.check == "newton" && v.type != "adr") f.fail("check", "the Newton check compares static answers: it needs solver.type adr");

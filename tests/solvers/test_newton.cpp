@@ -11,14 +11,15 @@ using namespace perinom;
 
 namespace {
 
-std::string plate(const char* formulation, const char* at, bool supported = true) {
+std::string plate(const char* formulation, const char* at, bool supported = true,
+                  double stabilization = 0.5) {
   return std::string(R"(
 name: plate
 dimension: 2
 geometry: {box: {min: [0, 0], max: [0.012, 0.024]}}
 discretization: {dx: 0.001, horizon: {ratio: 3.015}, jitter: 0.2}
 material: {type: linear_elastic, E: 30.0e6, nu: 0.25, density: 2000, plane: strain}
-model: {formulation: )") + formulation + R"(}
+model: {formulation: )") + formulation + ", stabilization: " + std::to_string(stabilization) + R"(}
 boundary:
 )" + (supported ? std::string("  - {region: bottom, fix: [x, y], at: ") + at + "}\n" : std::string()) + R"(  - {region: top, pressure: 2.0e5}
   - {region: right, traction: [3.0e4, 1.0e4]}
@@ -33,10 +34,28 @@ double relative_difference(const std::vector<double>& a, const std::vector<doubl
 
 }  // namespace
 
+const char* column_3d = R"(
+name: column
+dimension: 3
+geometry: {box: {min: [0, 0, 0], max: [0.005, 0.005, 0.008]}}
+discretization: {dx: 0.001, horizon: {ratio: 2.015}, jitter: 0.2}
+material: {type: linear_elastic, E: 30.0e6, nu: 0.25, density: 2000}
+model: {formulation: improved, stabilization: 0.5}
+boundary:
+  - {region: bottom, fix: [x, y, z], at: face}
+  - {region: top, pressure: 2.0e5}
+)";
+
 TEST_CASE("the assembled Jacobian is the derivative of the residual", "[solvers][newton]") {
+  std::vector<std::string> scenes;
   for (const char* form : {"classical", "improved", "strong"})
-    for (const char* at : {"layer", "face"}) {
-      Problem p = build_problem(parse_scene(plate(form, at), "plate"));
+    for (const char* at : {"layer", "face"})
+      for (double c_hg : {0.0, 0.5}) scenes.push_back(plate(form, at, true, c_hg));
+  scenes.push_back(column_3d);
+  scenes.push_back(std::string(column_3d).replace(std::string(column_3d).find("improved"), 8, "classical"));
+  for (const auto& scene : scenes) {
+    {
+      Problem p = build_problem(parse_scene(scene, "scene"));
       StaticSystem system(*p.model, p.loading);
       system.assemble(nullptr);
       const CsrMatrix& J = system.jacobian();
@@ -53,9 +72,10 @@ TEST_CASE("the assembled Jacobian is the derivative of the residual", "[solvers]
       }
       double err = 0.0, scale = 0.0;
       for (std::size_t k = 0; k < u.size(); ++k) err = std::max(err, std::abs(Ruv[k] - Ru[k] - Jv[k])), scale = std::max(scale, std::abs(Jv[k]));
-      INFO(form << ", " << at);
+      INFO(scene);
       CHECK(err <= 1e-9 * scale);
     }
+  }
 }
 
 TEST_CASE("Newton converges in one iteration on a linear problem, to the direct solution", "[solvers][newton]") {

@@ -29,7 +29,7 @@ boundary:
 solver: {type: adr, max_iterations: 1000000}
 probes:
   - {name: top_center_uz, point: [0.006, 0.006, 0.024], component: z, reconstruct: true}
-  - {name: center_line, line: {from: [0.006, 0.006, 0.0], to: [0.006, 0.006, 0.024]}, component: z}
+  - {name: center_line, line: {from: [0.0055, 0.0055, 0.0], to: [0.0055, 0.0055, 0.024]}, component: z}
 """
 
 

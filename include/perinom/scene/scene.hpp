@@ -53,6 +53,7 @@ struct SolverSpec {
   double ramp_time = 0.0;
   std::int64_t history_every = 10;
   bool line_search = true;    ///< Newton
+  double step_tolerance = 1e-14;  ///< Newton: KINSOL's scaled step tolerance
   std::string check = "none"; ///< "newton": also solve with Newton and report the difference
 };
 
