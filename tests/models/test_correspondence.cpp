@@ -1,4 +1,7 @@
 #include <catch2/catch.hpp>
+#include <omp.h>
+
+#include <cstring>
 
 #include "../support/clouds.hpp"
 #include "perinom/geometry/surface.hpp"
@@ -150,5 +153,26 @@ TEST_CASE("the assembled tangent rows equal the derivative of the force", "[mode
       for (std::size_t m = 0; m < n; ++m) s += std::abs(K[r * n + m]);
       CHECK(sums[r] == Approx(s).epsilon(1e-10));
     }
+  }
+}
+
+TEST_CASE("the force is bitwise independent of the thread count", "[models]") {
+  // Each row is summed in a fixed order by one thread (gathers, no atomics, no reductions).
+  const PointCloud c = test::lattice(3, 9, 0.3);
+  BoxGeometry box;
+  box.dim = 3;
+  box.max = {9, 9, 9};
+  for (const Formulation form : {Formulation::classical, Formulation::improved}) {
+    CorrespondenceModel model(c, radius_families(c, 2.015), material(3, PlaneCondition::none),
+                              {Influence::inverse_square, 0.5, form}, find_surface(box, c, 4.03));
+    const auto u = test::random_field(model.dofs(), 1e-4, 12);
+    std::vector<double> one(u.size()), two(u.size());
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    model.internal_force(u.data(), one.data());
+    omp_set_num_threads(2);
+    model.internal_force(u.data(), two.data());
+    omp_set_num_threads(threads);
+    CHECK(std::memcmp(one.data(), two.data(), one.size() * sizeof(double)) == 0);
   }
 }
