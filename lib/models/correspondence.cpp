@@ -84,9 +84,9 @@ double CorrespondenceModel::energy(const double* u) {
 #pragma omp parallel for reduction(+ : w) schedule(static)
   for (std::size_t i = 0; i < n; ++i) w += volume_[i] * material_.energy(H_.data() + i * d2);
   if (S_) {
-    std::vector<double> su(n * dim_, 0.0);
-    S_->apply_add(u, dim_, su.data());
-    for (std::size_t k = 0; k < su.size(); ++k) w += 0.5 * u[k] * su[k];
+    Su_.assign(n * dim_, 0.0);  // sized once: no allocation after the first call
+    S_->apply_add(u, dim_, Su_.data());
+    for (std::size_t k = 0; k < Su_.size(); ++k) w += 0.5 * u[k] * Su_[k];
   }
   return w;
 }

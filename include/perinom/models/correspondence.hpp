@@ -76,6 +76,7 @@ class CorrespondenceModel : public Model {
   GradientOperator G_;
   std::optional<ScalarCsr> S_;
   std::vector<double> H_, Q_, P_;  // workspaces: grad u, V . P, and P for strong rows
+  std::vector<double> Su_;         // workspace: S u, for the energy
 };
 
 }  // namespace perinom
