@@ -118,8 +118,13 @@ SolveReport solve_newton(CorrespondenceModel& model, const Loading& loading,
     long iterations = 0;
     KINGetNumNonlinSolvIters(kin.get(), &iterations);
     rep.iterations += iterations;
+    const sun_klu_common* common = SUNLinSol_KLUGetCommon(ls.get());
+    if (common && common->status == KLU_OUT_OF_MEMORY)
+      throw SolveError("Newton: KLU ran out of memory factorizing the Jacobian (" +
+                       std::to_string(A.col.size()) + " nonzeros before fill); use solver.type adr, "
+                       "or a smaller horizon ratio (the Jacobian couples particles two horizons apart)");
     const double rcond = reciprocal_pivot_ratio(ls.get());
-    if (flag == KIN_LSETUP_FAIL || (iterations > 0 && rcond < 1e-13))
+    if ((flag == KIN_LSETUP_FAIL && common && common->status == KLU_SINGULAR) || (iterations > 0 && rcond < 1e-13))
       throw InputError("Newton: the stiffness is singular (KLU reciprocal pivot ratio " + std::to_string(rcond) +
                        "): the body can move without deforming; a boundary condition is probably missing "
                        "(fix enough components to stop rigid translation and rotation)");
