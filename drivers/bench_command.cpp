@@ -15,6 +15,7 @@
 #include "perinom/geometry/lattice.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/neighbors/search.hpp"
+#include "perinom/operators/scalar_csr.hpp"
 
 namespace perinom::cli {
 namespace {
@@ -55,6 +56,7 @@ int bench(const Options& opt) {
   mat.plane = d == 2 ? PlaneCondition::strain : PlaneCondition::none;
   CorrespondenceOptions copt;
   copt.stabilization = opt.stabilization;
+  copt.stabilization_matrix_free = opt.matrix_free;
   CorrespondenceModel model(cloud, fam, mat, copt);
   const double setup = wall_seconds() - t0;
 
@@ -70,25 +72,29 @@ int bench(const Options& opt) {
   const double per_eval = (wall_seconds() - t1) / evals;
   const double bonds = double(fam.bonds());
   // Operator bytes streamed once per evaluation: G and G^T (index + d weights per bond),
-  // plus S (index + value per entry) when assembled.
+  // plus S0 (index + value per entry) when assembled, or the matrix-free stabilization's two
+  // bond passes (index + w V per bond each).
+  const ScalarCsr* S0 = model.assembled_stabilization();
+  const double s_bytes = S0 ? double(S0->nonzeros()) * (sizeof(ParticleId) + sizeof(double)) : 0.0;
   const double bytes = 2.0 * bonds * (sizeof(ParticleId) + d * sizeof(double)) +
-                       (model.S() ? model.S()->nonzeros() * (sizeof(ParticleId) + sizeof(double)) : 0.0);
+                       (!model.stabilization() ? 0.0
+                        : opt.matrix_free ? 2.0 * bonds * (sizeof(ParticleId) + sizeof(double))
+                                          : s_bytes);
   const double gbs = bytes / per_eval / 1e9, stream = stream_triad_gbs();
   std::printf("particles                %zu\n", cloud.size());
   std::printf("bonds                    %.0f\n", bonds);
   std::printf("threads                  %d\n", omp_get_max_threads());
-  std::printf("stabilization C_hg       %g (S nonzeros %zu)\n", opt.stabilization,
-              model.S() ? model.S()->nonzeros() : 0);
+  std::printf("stabilization C_hg       %g (%s)\n", opt.stabilization, opt.matrix_free ? "matrix-free" : "assembled");
   std::printf("setup (search+assembly)  %.3f s\n", setup);
   std::printf("ms per evaluation        %.3f\n", per_eval * 1e3);
   std::printf("bond evaluations / s     %.3e\n", bonds / per_eval);
   std::printf("operator bytes / eval    %.3e\n", bytes);
   std::printf("achieved                 %.2f GB/s\n", gbs);
   std::printf("STREAM triad             %.2f GB/s (ratio %.2f)\n", stream, gbs / stream);
-  std::printf("{\"particles\": %zu, \"bonds\": %.0f, \"threads\": %d, \"stabilization\": %g, "
+  std::printf("{\"particles\": %zu, \"bonds\": %.0f, \"threads\": %d, \"stabilization\": %g, \"matrix_free\": %s, "
               "\"seconds_per_evaluation\": %.6e, \"bond_evaluations_per_second\": %.6e, "
               "\"bytes_per_evaluation\": %.6e, \"achieved_gbs\": %.3f, \"stream_triad_gbs\": %.3f}\n",
-              cloud.size(), bonds, omp_get_max_threads(), opt.stabilization, per_eval,
+              cloud.size(), bonds, omp_get_max_threads(), opt.stabilization, opt.matrix_free ? "true" : "false", per_eval,
               bonds / per_eval, bytes, gbs, stream);
   return 0;
 }

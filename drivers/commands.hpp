@@ -12,6 +12,7 @@ struct Options {
   int dimension = 3;
   long n = 20;
   double stabilization = 0.5;
+  bool matrix_free = false;
 };
 
 int run(const Options& opt);

@@ -33,11 +33,18 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
   G_ = GradientOperator(cloud, families, weights);
   if (options.stabilization > 0.0) {
     const auto c = stabilization_coefficients(weights, dim_, options.stabilization, material.mu());
-    S_ = assemble_stabilization(cloud, families, weights, G_, c);
+    S_.emplace(cloud, families, weights, G_, c);
+    if (options.stabilization_matrix_free) {
+      B_.resize(particles() * dim_ * dim_);
+      r_.resize(particles() * dim_);
+    } else {
+      S_assembled_ = assemble_stabilization(*S_, particles());
+    }
   }
   H_.resize(particles() * dim_ * dim_);
   Q_.resize(particles() * dim_ * dim_);
   if (formulation_ != Formulation::classical) P_.resize(particles() * dim_ * dim_);
+  if (S_) Su_.resize(particles() * dim_);
 }
 
 void CorrespondenceModel::gradient(const double* u, double* H) const { G_.apply(u, dim_, H); }
@@ -46,18 +53,23 @@ void CorrespondenceModel::internal_force(const double* u, double* f) {
   const int d2 = dim_ * dim_;
   const std::size_t n = particles();
   G_.apply(u, dim_, H_.data());
+  const bool stabilized = S_ && !S_assembled_;  // matrix-free stabilization
+  if (stabilized) S_->bond_terms(u, H_.data(), B_.data(), r_.data());
   const bool strong_rows = formulation_ != Formulation::classical;
+  // Q = V P - B: the stabilization's G^T(-B) rides along with the weak-form product.
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     double* q = Q_.data() + i * d2;
     material_.stress(H_.data() + i * d2, q);
     if (strong_rows) std::copy(q, q + d2, P_.data() + i * d2);
-    for (int k = 0; k < d2; ++k) q[k] *= volume_[i];
+    for (int k = 0; k < d2; ++k) q[k] = q[k] * volume_[i] - (stabilized ? B_[i * d2 + k] : 0.0);
   }
   if (!strong_rows) {
     G_.apply_transpose(Q_.data(), dim_, f);
   } else {
     G_.apply_transpose(Q_.data(), dim_, f, &surface_.interior);
+    // The band's stabilization G^T(-B), before its rows are overwritten by the strong form.
+    if (stabilized) G_.apply_transpose(B_.data(), dim_, Su_.data(), &surface_.band);
     G_.divergence(P_.data(), dim_, f, &surface_.band);
     const auto& band = surface_.band;
     const int d = dim_;
@@ -69,11 +81,12 @@ void CorrespondenceModel::internal_force(const double* u, double* f) {
       for (int a = 0; a < d; ++a) {
         double Pm = 0.0;
         for (int b = 0; b < d; ++b) Pm += P[a * d + b] * m[b];
-        f[i * d + a] = -volume_[i] * (f[i * d + a] - Pm);
+        f[i * d + a] = -volume_[i] * (f[i * d + a] - Pm) - (stabilized ? Su_[i * d + a] : 0.0);
       }
     }
   }
-  if (S_) S_->apply_add(u, dim_, f);
+  if (stabilized) S_->add_direct(u, H_.data(), r_.data(), f);
+  if (S_assembled_) S_assembled_->apply_add(u, dim_, f);
 }
 
 double CorrespondenceModel::energy(const double* u) {
@@ -84,8 +97,16 @@ double CorrespondenceModel::energy(const double* u) {
 #pragma omp parallel for reduction(+ : w) schedule(static)
   for (std::size_t i = 0; i < n; ++i) w += volume_[i] * material_.energy(H_.data() + i * d2);
   if (S_) {
-    Su_.assign(n * dim_, 0.0);  // sized once: no allocation after the first call
-    S_->apply_add(u, dim_, Su_.data());
+    // W_s = 1/2 u . S u, with S u = G^T(-B) + the direct bond term, or the stored S0.
+    if (S_assembled_) {
+      std::fill(Su_.begin(), Su_.end(), 0.0);
+      S_assembled_->apply_add(u, dim_, Su_.data());
+    } else {
+      S_->bond_terms(u, H_.data(), B_.data(), r_.data());
+      G_.apply_transpose(B_.data(), dim_, Su_.data());
+      for (auto& v : Su_) v = -v;
+      S_->add_direct(u, H_.data(), r_.data(), Su_.data());
+    }
     for (std::size_t k = 0; k < Su_.size(); ++k) w += 0.5 * u[k] * Su_[k];
   }
   return w;
@@ -104,7 +125,7 @@ void CorrespondenceModel::visit_tangent_rows(
   std::vector<double> C(dim_ * dim_ * dim_ * dim_);
   material_.tangent(C.data());
   const StrongRows strong{surface_.in_band.data(), surface_.normal_over_h.data()};
-  for_each_tangent_row(G_, PointwiseTangent{C.data(), 0, volume_.data()}, S(), visit,
+  for_each_tangent_row(G_, PointwiseTangent{C.data(), 0, volume_.data()}, stabilization(), visit,
                        formulation_ == Formulation::classical ? nullptr : &strong);
 }
 
@@ -122,8 +143,10 @@ std::vector<double> CorrespondenceModel::stiffness_row_sums() const {
 std::vector<std::pair<std::string, std::size_t>> CorrespondenceModel::memory() const {
   std::vector<std::pair<std::string, std::size_t>> m;
   m.emplace_back("gradient operator G and G^T", G_.memory_bytes());
-  if (S_) m.emplace_back("stabilization S", S_->memory_bytes());
-  m.emplace_back("workspaces (grad u, V.P, P)", (H_.size() + Q_.size() + P_.size()) * sizeof(double));
+  if (S_) m.emplace_back(S_assembled_ ? "stabilization S (assembled)" : "stabilization (matrix-free)",
+                        S_->memory_bytes() + (S_assembled_ ? S_assembled_->memory_bytes() : 0));
+  m.emplace_back("workspaces (grad u, V.P, P, B, r)",
+                 (H_.size() + Q_.size() + P_.size() + B_.size() + r_.size() + Su_.size()) * sizeof(double));
   if (formulation_ != Formulation::classical)
     m.emplace_back("surface normals and band E",
                    surface_.normal_over_h.size() * sizeof(double) +

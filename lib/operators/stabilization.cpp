@@ -1,7 +1,5 @@
 #include "perinom/operators/stabilization.hpp"
 
-#include "perinom/operators/row_accumulator.hpp"
-
 namespace perinom {
 namespace {
 
@@ -11,7 +9,148 @@ double dot(const double* a, const double* b, int d) {
   return s;
 }
 
+// z = u_j - u_i - H_i (x_j - x_i) for one bond, d components.
+template <int D>
+inline void bond_z(const double* ui, const double* uj, const double* Hi, const double* xi,
+                   const double* xj, double* z, double* xi_ij) {
+  for (int b = 0; b < D; ++b) xi_ij[b] = xj[b] - xi[b];
+  for (int a = 0; a < D; ++a) {
+    double s = uj[a] - ui[a];
+    for (int b = 0; b < D; ++b) s -= Hi[a * D + b] * xi_ij[b];
+    z[a] = s;
+  }
+}
+
+template <int D>
+void row_pass(std::size_t n, const Offset* off, const ParticleId* col, const double* wv,
+              const double* cv, const double* x, const double* u, const double* H, double* B,
+              double* r) {
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    double Bi[D * D] = {}, ri[D] = {}, z[D], xi_ij[D];
+    for (Offset k = off[i]; k < off[i + 1]; ++k) {
+      const std::size_t j = col[k];
+      bond_z<D>(u + i * D, u + j * D, H + i * D * D, x + i * D, x + j * D, z, xi_ij);
+      const double beta = cv[i] * wv[k];
+      for (int a = 0; a < D; ++a) {
+        ri[a] += beta * z[a];
+        for (int b = 0; b < D; ++b) Bi[a * D + b] += beta * z[a] * xi_ij[b];
+      }
+    }
+    for (int k = 0; k < D * D; ++k) B[i * D * D + k] = Bi[k];
+    for (int a = 0; a < D; ++a) r[i * D + a] = ri[a];
+  }
+}
+
+template <int D>
+void dual_pass(std::size_t n, const Offset* off, const ParticleId* col, const double* t_wv,
+               const double* cv, const double* x, const double* u, const double* H,
+               const double* r, double* out) {
+#pragma omp parallel for schedule(static)
+  for (std::size_t l = 0; l < n; ++l) {
+    double acc[D], z[D], xi_il[D];
+    for (int a = 0; a < D; ++a) acc[a] = -r[l * D + a];
+    for (Offset k = off[l]; k < off[l + 1]; ++k) {
+      const std::size_t i = col[k];  // l is in H_i
+      bond_z<D>(u + i * D, u + l * D, H + i * D * D, x + i * D, x + l * D, z, xi_il);
+      const double beta = cv[i] * t_wv[k];
+      for (int a = 0; a < D; ++a) acc[a] += beta * z[a];
+    }
+    for (int a = 0; a < D; ++a) out[l * D + a] += acc[a];
+  }
+}
+
 }  // namespace
+
+Stabilization::Stabilization(const PointCloud& cloud, const Families& families,
+                             const BondWeights& weights, const GradientOperator& G,
+                             const std::vector<double>& coefficient)
+    : dim_(cloud.dim), G_(&G), x_(cloud.x), cv_(cloud.size()), wv_(weights.wv) {
+  for (std::size_t i = 0; i < cloud.size(); ++i) cv_[i] = coefficient[i] * cloud.volume[i];
+  const DualSupport dual = dual_support(families);
+  t_wv_.resize(dual.bond.size());
+  for (std::size_t s = 0; s < dual.bond.size(); ++s) t_wv_[s] = wv_[dual.bond[s]];
+}
+
+void Stabilization::bond_terms(const double* u, const double* H, double* B, double* r) const {
+  const std::size_t n = cv_.size();
+  const Offset* off = G_->offsets().data();
+  const ParticleId* col = G_->cols().data();
+  if (dim_ == 2) row_pass<2>(n, off, col, wv_.data(), cv_.data(), x_.data(), u, H, B, r);
+  else row_pass<3>(n, off, col, wv_.data(), cv_.data(), x_.data(), u, H, B, r);
+}
+
+void Stabilization::add_direct(const double* u, const double* H, const double* r, double* out) const {
+  const std::size_t n = cv_.size();
+  const Offset* off = G_->dual_offsets().data();
+  const ParticleId* col = G_->dual_cols().data();
+  if (dim_ == 2) dual_pass<2>(n, off, col, t_wv_.data(), cv_.data(), x_.data(), u, H, r, out);
+  else dual_pass<3>(n, off, col, t_wv_.data(), cv_.data(), x_.data(), u, H, r, out);
+}
+
+void Stabilization::add_row(std::size_t r, RowAccumulator& acc, int copies) const {
+  const int d = dim_;
+  const GradientOperator& G = *G_;
+  auto add = [&](ParticleId j, double v) {
+    double* block = acc.at(j);
+    for (int k = 0; k < copies; ++k) block[k * (copies + 1)] += v;
+  };
+  const double* xr = x_.data() + r * d;
+  // Row r of M_r (r is the centre): A_r = -sum_k a_rk, a_rk = w_rk V_k xi_rk.
+  {
+    const double scale = cv_[r];
+    double s[3] = {0, 0, 0}, wsum = 0.0;
+    for (Offset k = G.offsets()[r]; k < G.offsets()[r + 1]; ++k) {
+      const double* xj = x_.data() + static_cast<std::size_t>(G.cols()[k]) * d;
+      for (int a = 0; a < d; ++a) s[a] -= wv_[k] * (xj[a] - xr[a]);
+      wsum += wv_[k];
+    }
+    add(static_cast<ParticleId>(r), scale * (wsum - dot(s, G.diagonal(r), d)));
+    for (Offset k = G.offsets()[r]; k < G.offsets()[r + 1]; ++k)
+      add(G.cols()[k], scale * (-wv_[k] - dot(s, G.weight(k), d)));
+  }
+  // Row r of M_i for every i whose family holds r: A_r = a_ir = w_ir V_r xi_ir.
+  for (Offset t = G.dual_offsets()[r]; t < G.dual_offsets()[r + 1]; ++t) {
+    const ParticleId i = G.dual_cols()[t];
+    const double scale = cv_[i];
+    const double* xi = x_.data() + static_cast<std::size_t>(i) * d;
+    double a[3] = {0, 0, 0};
+    for (int c = 0; c < d; ++c) a[c] = t_wv_[t] * (xr[c] - xi[c]);
+    add(static_cast<ParticleId>(r), scale * t_wv_[t]);
+    add(i, scale * (-t_wv_[t] - dot(a, G.diagonal(i), d)));
+    for (Offset k = G.offsets()[i]; k < G.offsets()[i + 1]; ++k) add(G.cols()[k], -scale * dot(a, G.weight(k), d));
+  }
+}
+
+std::size_t Stabilization::memory_bytes() const {
+  return (x_.size() + cv_.size() + wv_.size() + t_wv_.size()) * sizeof(double);
+}
+
+ScalarCsr assemble_stabilization(const Stabilization& S, std::size_t n) {
+  std::vector<std::vector<ParticleId>> row_cols(n);
+  std::vector<std::vector<double>> row_vals(n);
+#pragma omp parallel
+  {
+    RowAccumulator acc(n, 1);
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t r = 0; r < n; ++r) {
+      S.add_row(r, acc, 1);
+      acc.finish();
+      row_cols[r] = acc.cols();
+      row_vals[r].resize(row_cols[r].size());
+      for (std::size_t k = 0; k < row_cols[r].size(); ++k) row_vals[r][k] = *acc.block(k);
+      acc.clear();
+    }
+  }
+  ScalarCsr A;
+  A.offsets.assign(n + 1, 0);
+  for (std::size_t r = 0; r < n; ++r) A.offsets[r + 1] = A.offsets[r] + row_cols[r].size();
+  for (std::size_t r = 0; r < n; ++r) {
+    A.cols.insert(A.cols.end(), row_cols[r].begin(), row_cols[r].end());
+    A.values.insert(A.values.end(), row_vals[r].begin(), row_vals[r].end());
+  }
+  return A;
+}
 
 std::vector<double> stabilization_coefficients(const BondWeights& weights, int d, double c_hg,
                                                double mu) {
@@ -23,67 +162,6 @@ std::vector<double> stabilization_coefficients(const BondWeights& weights, int d
     c[i] = c_hg * 2.0 * mu / tr;
   }
   return c;
-}
-
-ScalarCsr assemble_stabilization(const PointCloud& cloud, const Families& fam,
-                                 const BondWeights& bw, const GradientOperator& G,
-                                 const std::vector<double>& coefficient) {
-  const int d = cloud.dim;
-  const std::size_t n = cloud.size();
-  const DualSupport dual = dual_support(fam);
-  std::vector<std::vector<ParticleId>> row_cols(n);
-  std::vector<std::vector<double>> row_vals(n);
-#pragma omp parallel
-  {
-    RowAccumulator acc(n, 1);
-#pragma omp for schedule(dynamic, 64)
-    for (std::size_t r = 0; r < n; ++r) {
-      const double* xr = cloud.point(r);
-      // Row r of M_r (r is the centre): A_r = -sum_k a_rk.
-      {
-        const double scale = coefficient[r] * cloud.volume[r];
-        double s[3] = {0, 0, 0}, wsum = 0.0;
-        for (Offset k = fam.begin(r); k < fam.end(r); ++k) {
-          const double* xj = cloud.point(fam.neighbors[k]);
-          for (int a = 0; a < d; ++a) s[a] -= bw.wv[k] * (xj[a] - xr[a]);
-          wsum += bw.wv[k];
-        }
-        *acc.at(static_cast<ParticleId>(r)) += scale * (wsum - dot(s, G.diagonal(r), d));
-        for (Offset k = fam.begin(r); k < fam.end(r); ++k)
-          *acc.at(fam.neighbors[k]) += scale * (-bw.wv[k] - dot(s, G.weight(k), d));
-      }
-      // Row r of M_i for every i whose family holds r: A_r = a_ir = w_ir V_r xi_ir.
-      for (Offset t = dual.offsets[r]; t < dual.offsets[r + 1]; ++t) {
-        const ParticleId i = dual.neighbors[t];
-        const Offset p = dual.bond[t];
-        const double scale = coefficient[i] * cloud.volume[i];
-        const double* xi = cloud.point(i);
-        double a[3] = {0, 0, 0};
-        for (int c = 0; c < d; ++c) a[c] = bw.wv[p] * (xr[c] - xi[c]);
-        *acc.at(static_cast<ParticleId>(r)) += scale * bw.wv[p];
-        *acc.at(i) += scale * (-bw.wv[p] - dot(a, G.diagonal(i), d));
-        for (Offset k = fam.begin(i); k < fam.end(i); ++k)
-          *acc.at(fam.neighbors[k]) -= scale * dot(a, G.weight(k), d);
-      }
-      acc.finish();
-      row_cols[r] = acc.cols();
-      row_vals[r].resize(row_cols[r].size());
-      for (std::size_t k = 0; k < row_cols[r].size(); ++k) row_vals[r][k] = *acc.block(k);
-      acc.clear();
-    }
-  }
-  ScalarCsr S;
-  S.offsets.assign(n + 1, 0);
-  for (std::size_t r = 0; r < n; ++r) S.offsets[r + 1] = S.offsets[r] + row_cols[r].size();
-  S.cols.reserve(S.offsets.back());
-  S.values.reserve(S.offsets.back());
-  for (std::size_t r = 0; r < n; ++r) {
-    S.cols.insert(S.cols.end(), row_cols[r].begin(), row_cols[r].end());
-    S.values.insert(S.values.end(), row_vals[r].begin(), row_vals[r].end());
-    std::vector<ParticleId>().swap(row_cols[r]);
-    std::vector<double>().swap(row_vals[r]);
-  }
-  return S;
 }
 
 }  // namespace perinom

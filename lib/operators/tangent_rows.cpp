@@ -5,7 +5,7 @@
 namespace perinom {
 
 void for_each_tangent_row(
-    const GradientOperator& G, const PointwiseTangent& tangent, const ScalarCsr* S,
+    const GradientOperator& G, const PointwiseTangent& tangent, const Stabilization* S,
     const std::function<void(std::size_t, const std::vector<ParticleId>&,
                              const std::vector<double>&)>& visit,
     const StrongRows* strong) {
@@ -62,11 +62,7 @@ void for_each_tangent_row(
           add_source(m, coef);
         }
       }
-      if (S)
-        for (Offset k = S->offsets[i]; k < S->offsets[i + 1]; ++k) {
-          double* K = acc.at(S->cols[k]);
-          for (int a = 0; a < d; ++a) K[a * d + a] += S->values[k];
-        }
+      if (S) S->add_row(i, acc, d);
       acc.finish();
       blocks.resize(acc.cols().size() * d2);
       for (std::size_t k = 0; k < acc.cols().size(); ++k)

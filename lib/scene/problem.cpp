@@ -138,6 +138,7 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
   CorrespondenceOptions opt;
   opt.influence = s.discretization.weight;
   opt.stabilization = s.model.stabilization;
+  opt.stabilization_matrix_free = s.model.stabilization_storage == "matrix_free";
   parse_formulation(s.model.formulation, opt.formulation);
   Surface surface;
   if (opt.formulation != Formulation::classical) {

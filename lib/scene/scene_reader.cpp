@@ -107,6 +107,9 @@ void read_model(Fields f, Scene& s) {
     f.fail("formulation", "must be classical, improved or strong");
   s.model.stabilization = f.number("stabilization", 0.5);
   if (s.model.stabilization < 0.0) f.fail("stabilization", "must be zero or positive");
+  s.model.stabilization_storage = f.text("stabilization_storage", "assembled");
+  if (s.model.stabilization_storage != "assembled" && s.model.stabilization_storage != "matrix_free")
+    f.fail("stabilization_storage", "must be assembled or matrix_free");
   f.finish();
 }
 

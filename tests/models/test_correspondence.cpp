@@ -135,7 +135,7 @@ TEST_CASE("the assembled tangent rows equal the derivative of the force", "[mode
     model.material().tangent(C.data());
     std::vector<double> assembled(n * n, 0.0);
     const StrongRows strong{model.surface().in_band.data(), model.surface().normal_over_h.data()};
-    for_each_tangent_row(model.G(), {C.data(), 0, model.volume().data()}, model.S(),
+    for_each_tangent_row(model.G(), {C.data(), 0, model.volume().data()}, model.stabilization(),
                          [&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
                            for (std::size_t q = 0; q < cols.size(); ++q)
                              for (int a = 0; a < d; ++a)
@@ -175,4 +175,31 @@ TEST_CASE("the force is bitwise independent of the thread count", "[models]") {
     omp_set_num_threads(threads);
     CHECK(std::memcmp(one.data(), two.data(), one.size() * sizeof(double)) == 0);
   }
+}
+
+TEST_CASE("the matrix-free and the assembled stabilization give the same force", "[models]") {
+  for (const Case& k : cases)
+    for (const Formulation form : {Formulation::classical, Formulation::improved}) {
+      const int side = k.dim == 2 ? 10 : 6;
+      const PointCloud c = test::lattice(k.dim, side, 0.3);
+      BoxGeometry box;
+      box.dim = k.dim;
+      for (int a = 0; a < k.dim; ++a) box.max[a] = side;
+      const Families f = families(c, k.knn);
+      CorrespondenceModel stored(c, f, material(k.dim, k.plane), {Influence::inverse_square, 0.5, form, false},
+                                 find_surface(box, c, 2.0));
+      CorrespondenceModel free(c, f, material(k.dim, k.plane), {Influence::inverse_square, 0.5, form, true},
+                               find_surface(box, c, 2.0));
+      REQUIRE(stored.assembled_stabilization() != nullptr);
+      REQUIRE(free.assembled_stabilization() == nullptr);
+      const auto u = test::random_field(stored.dofs(), 1e-4, 21);
+      std::vector<double> fs(u.size()), ff(u.size());
+      stored.internal_force(u.data(), fs.data());
+      free.internal_force(u.data(), ff.data());
+      double err = 0.0;
+      for (std::size_t m = 0; m < u.size(); ++m) err = std::max(err, std::abs(fs[m] - ff[m]));
+      INFO("dim " << k.dim << (k.knn ? " knn" : " radius") << " formulation " << int(form));
+      CHECK(err <= 1e-11 * test::max_abs(fs));
+      CHECK(free.energy(u.data()) == Approx(stored.energy(u.data())).epsilon(1e-11));
+    }
 }

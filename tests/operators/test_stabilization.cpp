@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
+#include <memory>
 
 #include "../support/clouds.hpp"
 #include "perinom/neighbors/search.hpp"
@@ -16,18 +17,18 @@ struct Setup {
   BondWeights weights;
   GradientOperator G;
   std::vector<double> c;
+  std::unique_ptr<Stabilization> op;  // refers to G: built in place, never moved
   ScalarCsr S;
 };
 
-Setup make(int dim, int n, bool knn) {
-  Setup s;
+void make(Setup& s, int dim, int n, bool knn) {
   s.cloud = test::lattice(dim, n, 0.35);
   s.families = knn ? knn_families(s.cloud, dim == 2 ? 12 : 30) : radius_families(s.cloud, 2.015);
   s.weights = bond_weights(s.cloud, s.families, Influence::inverse_square);
   s.G = GradientOperator(s.cloud, s.families, s.weights);
   s.c = stabilization_coefficients(s.weights, dim, 0.5, 1.0);
-  s.S = assemble_stabilization(s.cloud, s.families, s.weights, s.G, s.c);
-  return s;
+  s.op = std::make_unique<Stabilization>(s.cloud, s.families, s.weights, s.G, s.c);
+  s.S = assemble_stabilization(*s.op, s.cloud.size());
 }
 
 /// W_s = 1/2 sum_i V_i c_i sum_j w_ij V_j |z_ij|^2 for a scalar field, straight from THEORY sec. 4.
@@ -58,7 +59,8 @@ Eigen::MatrixXd dense(const ScalarCsr& S) {
 TEST_CASE("S is zero on linear fields", "[operators][stabilization]") {
   for (int dim : {2, 3})
     for (bool knn : {false, true}) {
-      const Setup s = make(dim, dim == 2 ? 10 : 5, knn);
+      Setup s;
+      make(s, dim, dim == 2 ? 10 : 5, knn);
       std::vector<double> u(s.cloud.size()), Su(s.cloud.size(), 0.0), ones(s.cloud.size(), 1.0), Sone(s.cloud.size(), 0.0);
       for (std::size_t i = 0; i < u.size(); ++i) u[i] = 0.7 - 1.3 * s.cloud.x[i * dim] + 0.4 * s.cloud.x[i * dim + dim - 1];
       s.S.apply_add(u.data(), 1, Su.data());
@@ -71,7 +73,8 @@ TEST_CASE("S is zero on linear fields", "[operators][stabilization]") {
 TEST_CASE("S is symmetric positive semi-definite", "[operators][stabilization]") {
   for (int dim : {2, 3})
     for (bool knn : {false, true}) {
-      const Setup s = make(dim, dim == 2 ? 9 : 4, knn);
+      Setup s;
+      make(s, dim, dim == 2 ? 9 : 4, knn);
       const Eigen::MatrixXd A = dense(s.S);
       const double scale = A.cwiseAbs().maxCoeff();
       CHECK((A - A.transpose()).cwiseAbs().maxCoeff() <= 1e-13 * scale);
@@ -89,7 +92,8 @@ TEST_CASE("S is symmetric positive semi-definite", "[operators][stabilization]")
 TEST_CASE("S u is the derivative of the bond-by-bond stabilization energy", "[operators][stabilization]") {
   for (int dim : {2, 3})
     for (bool knn : {false, true}) {
-      const Setup s = make(dim, dim == 2 ? 8 : 4, knn);
+      Setup s;
+      make(s, dim, dim == 2 ? 8 : 4, knn);
       const auto u = test::random_field(s.cloud.size(), 1e-3, 4);
       std::vector<double> Su(u.size(), 0.0);
       s.S.apply_add(u.data(), 1, Su.data());
@@ -104,5 +108,26 @@ TEST_CASE("S u is the derivative of the bond-by-bond stabilization energy", "[op
         const double fd = (stabilization_energy(s, up) - stabilization_energy(s, um)) / (2 * h);
         CHECK(Su[k] == Approx(fd).epsilon(1e-7).margin(1e-9 * test::max_abs(Su)));
       }
+    }
+}
+
+TEST_CASE("the matrix-free stabilization equals the assembled S on vector fields", "[operators][stabilization]") {
+  for (int dim : {2, 3})
+    for (bool knn : {false, true}) {
+      Setup s;
+      make(s, dim, dim == 2 ? 10 : 5, knn);
+      const std::size_t n = s.cloud.size();
+      const auto u = test::random_field(n * dim, 1e-3, 6);
+      std::vector<double> H(n * dim * dim), B(n * dim * dim), r(n * dim), free(n * dim), assembled(n * dim, 0.0);
+      s.G.apply(u.data(), dim, H.data());
+      s.op->bond_terms(u.data(), H.data(), B.data(), r.data());
+      s.G.apply_transpose(B.data(), dim, free.data());
+      for (auto& v : free) v = -v;
+      s.op->add_direct(u.data(), H.data(), r.data(), free.data());
+      s.S.apply_add(u.data(), dim, assembled.data());
+      double err = 0.0;
+      for (std::size_t k = 0; k < free.size(); ++k) err = std::max(err, std::abs(free[k] - assembled[k]));
+      INFO("dim " << dim << (knn ? " knn" : " radius"));
+      CHECK(err <= 1e-11 * test::max_abs(assembled));
     }
 }

@@ -6,7 +6,7 @@
 
 #include "perinom/core/types.hpp"
 #include "perinom/operators/gradient_operator.hpp"
-#include "perinom/operators/scalar_csr.hpp"
+#include "perinom/operators/stabilization.hpp"
 
 namespace perinom {
 
@@ -35,7 +35,7 @@ struct StrongRows {
 /// visit is called concurrently from several threads with distinct i.
 /// Cost: sum over m in {i} + H'_i of |H_m| d^3 per row.
 void for_each_tangent_row(
-    const GradientOperator& G, const PointwiseTangent& tangent, const ScalarCsr* S,
+    const GradientOperator& G, const PointwiseTangent& tangent, const Stabilization* S,
     const std::function<void(std::size_t, const std::vector<ParticleId>&,
                              const std::vector<double>&)>& visit,
     const StrongRows* strong = nullptr);

@@ -27,6 +27,7 @@ struct ModelSpec {
   std::string type = "correspondence";
   std::string formulation = "improved";
   double stabilization = 0.5;  ///< C_hg
+  std::string stabilization_storage = "assembled";  ///< assembled | matrix_free
 };
 
 /// One boundary condition on a region. Each of the three may be given: components to
