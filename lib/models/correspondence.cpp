@@ -30,7 +30,7 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
     throw std::invalid_argument("CorrespondenceModel: the improved and strong formulations need surface data");
   if (formulation_ == Formulation::classical) surface_ = Surface{};
   const BondWeights weights = bond_weights(cloud, families, options.influence);
-  G_ = GradientOperator(cloud, families, weights);
+  G_ = GradientOperator(cloud, families, weights, options.weight_precision);
   if (options.stabilization > 0.0) {
     const auto c = stabilization_coefficients(weights, dim_, options.stabilization, material.mu());
     S_.emplace(cloud, families, weights, G_, c);

@@ -2,72 +2,10 @@
 
 #include <stdexcept>
 
+#include "gather_kernels.hpp"
+
 namespace perinom {
 namespace {
-
-// Compile-time sizes let the compiler keep the accumulators in registers.
-template <int D, int NC>
-void gather_gradient(std::size_t n, const Offset* off, const ParticleId* col, const double* w,
-                     const double* f, double* out) {
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    double acc[NC][D] = {};
-    const double* fi = f + i * NC;
-    for (Offset k = off[i]; k < off[i + 1]; ++k) {
-      const double* fj = f + static_cast<std::size_t>(col[k]) * NC;
-      const double* g = w + k * D;
-      for (int c = 0; c < NC; ++c) {
-        const double diff = fj[c] - fi[c];
-        for (int b = 0; b < D; ++b) acc[c][b] += diff * g[b];
-      }
-    }
-    double* o = out + i * NC * D;
-    for (int c = 0; c < NC; ++c)
-      for (int b = 0; b < D; ++b) o[c * D + b] = acc[c][b];
-  }
-}
-
-// Rows are all of 0..n-1, or the n ids in `rows`.
-inline std::size_t row_of(const ParticleId* rows, std::size_t r) { return rows ? rows[r] : r; }
-
-template <int D, int NC>
-void gather_transpose(std::size_t n, const ParticleId* rows, const Offset* off,
-                      const ParticleId* col, const double* w, const double* diag,
-                      const double* q, double* out) {
-#pragma omp parallel for schedule(static)
-  for (std::size_t r = 0; r < n; ++r) {
-    const std::size_t i = row_of(rows, r);
-    double acc[NC] = {};
-    const double* qi = q + i * NC * D;
-    for (int c = 0; c < NC; ++c)
-      for (int b = 0; b < D; ++b) acc[c] += diag[i * D + b] * qi[c * D + b];
-    for (Offset k = off[i]; k < off[i + 1]; ++k) {
-      const double* qm = q + static_cast<std::size_t>(col[k]) * NC * D;
-      const double* g = w + k * D;
-      for (int c = 0; c < NC; ++c)
-        for (int b = 0; b < D; ++b) acc[c] += g[b] * qm[c * D + b];
-    }
-    for (int c = 0; c < NC; ++c) out[i * NC + c] = acc[c];
-  }
-}
-
-template <int D, int NC>
-void gather_divergence(std::size_t n, const ParticleId* rows, const Offset* off,
-                       const ParticleId* col, const double* w, const double* q, double* out) {
-#pragma omp parallel for schedule(static)
-  for (std::size_t r = 0; r < n; ++r) {
-    const std::size_t i = row_of(rows, r);
-    double acc[NC] = {};
-    const double* qi = q + i * NC * D;
-    for (Offset k = off[i]; k < off[i + 1]; ++k) {
-      const double* qj = q + static_cast<std::size_t>(col[k]) * NC * D;
-      const double* g = w + k * D;
-      for (int c = 0; c < NC; ++c)
-        for (int b = 0; b < D; ++b) acc[c] += (qj[c * D + b] - qi[c * D + b]) * g[b];
-    }
-    for (int c = 0; c < NC; ++c) out[i * NC + c] = acc[c];
-  }
-}
 
 [[noreturn]] void unsupported(int d, int nc) {
   throw std::invalid_argument("GradientOperator: no kernel for dimension " + std::to_string(d) +
@@ -77,8 +15,9 @@ void gather_divergence(std::size_t n, const ParticleId* rows, const Offset* off,
 }  // namespace
 
 GradientOperator::GradientOperator(const PointCloud& cloud, const Families& families,
-                                   const BondWeights& bw)
-    : dim_(cloud.dim), offsets_(families.offsets), cols_(families.neighbors) {
+                                   const BondWeights& bw, WeightPrecision precision)
+    : dim_(cloud.dim), precision_(precision), offsets_(families.offsets), cols_(families.neighbors) {
+  const bool single = precision == WeightPrecision::float32;
   const int d = dim_;
   const std::size_t n = rows();
   w_.resize(bonds() * d);
@@ -91,7 +30,8 @@ GradientOperator::GradientOperator(const PointCloud& cloud, const Families& fami
       for (int b = 0; b < d; ++b) {
         double g = 0.0;
         for (int c = 0; c < d; ++c) g += Kinv[b * d + c] * (cloud.x[j * d + c] - cloud.x[i * d + c]);
-        w_[k * d + b] = bw.wv[k] * g;
+        // The diagonal sums the weights as stored, so G of a constant is zero either way.
+        w_[k * d + b] = single ? double(float(bw.wv[k] * g)) : bw.wv[k] * g;
         diag_[i * d + b] -= w_[k * d + b];
       }
     }
@@ -102,20 +42,59 @@ GradientOperator::GradientOperator(const PointCloud& cloud, const Families& fami
   t_w_.resize(bonds() * d);
   for (std::size_t s = 0; s < dual.bond.size(); ++s)
     for (int b = 0; b < d; ++b) t_w_[s * d + b] = w_[dual.bond[s] * d + b];
+  if (single) {
+    w32_.assign(w_.begin(), w_.end());
+    t_w32_.assign(t_w_.begin(), t_w_.end());
+    std::vector<double>().swap(w_);
+    std::vector<double>().swap(t_w_);
+  }
 }
 
+namespace {
+
+template <class W>
+void apply_with(int d, std::size_t n, const Offset* off, const ParticleId* col, const W* w,
+                const double* f, int nc, double* out) {
+  namespace k = kernels;
+  if (d == 2 && nc == 1) return k::gradient<2, 1>(n, off, col, w, f, out);
+  if (d == 2 && nc == 2) return k::gradient2(n, off, col, w, f, out);
+  if (d == 2 && nc == 4) return k::gradient<2, 4>(n, off, col, w, f, out);
+  if (d == 3 && nc == 1) return k::gradient<3, 1>(n, off, col, w, f, out);
+  if (d == 3 && nc == 3) return k::gradient3(n, off, col, w, f, out);
+  if (d == 3 && nc == 9) return k::gradient<3, 9>(n, off, col, w, f, out);
+  unsupported(d, nc);
+}
+
+template <class W>
+void transpose_with(int d, std::size_t n, const ParticleId* r, const Offset* off,
+                    const ParticleId* col, const W* w, const double* dg, const double* q, int nc,
+                    double* out) {
+  namespace k = kernels;
+  if (d == 2 && nc == 1) return k::transpose<2, 1>(n, r, off, col, w, dg, q, out);
+  if (d == 2 && nc == 2) return k::transpose2(n, r, off, col, w, dg, q, out);
+  if (d == 3 && nc == 1) return k::transpose<3, 1>(n, r, off, col, w, dg, q, out);
+  if (d == 3 && nc == 3) return k::transpose3(n, r, off, col, w, dg, q, out);
+  unsupported(d, nc);
+}
+
+template <class W>
+void divergence_with(int d, std::size_t n, const ParticleId* r, const Offset* off,
+                     const ParticleId* col, const W* w, const double* q, int nc, double* out) {
+  namespace k = kernels;
+  if (d == 2 && nc == 1) return k::divergence<2, 1>(n, r, off, col, w, q, out);
+  if (d == 2 && nc == 2) return k::divergence<2, 2>(n, r, off, col, w, q, out);
+  if (d == 3 && nc == 1) return k::divergence<3, 1>(n, r, off, col, w, q, out);
+  if (d == 3 && nc == 3) return k::divergence<3, 3>(n, r, off, col, w, q, out);
+  unsupported(d, nc);
+}
+
+}  // namespace
+
 void GradientOperator::apply(const double* f, int nc, double* out) const {
-  const std::size_t n = rows();
   const Offset* off = offsets_.data();
   const ParticleId* col = cols_.data();
-  const double* w = w_.data();
-  if (dim_ == 2 && nc == 1) return gather_gradient<2, 1>(n, off, col, w, f, out);
-  if (dim_ == 2 && nc == 2) return gather_gradient<2, 2>(n, off, col, w, f, out);
-  if (dim_ == 2 && nc == 4) return gather_gradient<2, 4>(n, off, col, w, f, out);
-  if (dim_ == 3 && nc == 1) return gather_gradient<3, 1>(n, off, col, w, f, out);
-  if (dim_ == 3 && nc == 3) return gather_gradient<3, 3>(n, off, col, w, f, out);
-  if (dim_ == 3 && nc == 9) return gather_gradient<3, 9>(n, off, col, w, f, out);
-  unsupported(dim_, nc);
+  if (!w32_.empty()) return apply_with(dim_, rows(), off, col, w32_.data(), f, nc, out);
+  apply_with(dim_, rows(), off, col, w_.data(), f, nc, out);
 }
 
 void GradientOperator::apply_transpose(const double* q, int nc, double* out,
@@ -124,13 +103,8 @@ void GradientOperator::apply_transpose(const double* q, int nc, double* out,
   const ParticleId* r = subset ? subset->data() : nullptr;
   const Offset* off = t_offsets_.data();
   const ParticleId* col = t_cols_.data();
-  const double* w = t_w_.data();
-  const double* dg = diag_.data();
-  if (dim_ == 2 && nc == 1) return gather_transpose<2, 1>(n, r, off, col, w, dg, q, out);
-  if (dim_ == 2 && nc == 2) return gather_transpose<2, 2>(n, r, off, col, w, dg, q, out);
-  if (dim_ == 3 && nc == 1) return gather_transpose<3, 1>(n, r, off, col, w, dg, q, out);
-  if (dim_ == 3 && nc == 3) return gather_transpose<3, 3>(n, r, off, col, w, dg, q, out);
-  unsupported(dim_, nc);
+  if (!t_w32_.empty()) return transpose_with(dim_, n, r, off, col, t_w32_.data(), diag_.data(), q, nc, out);
+  transpose_with(dim_, n, r, off, col, t_w_.data(), diag_.data(), q, nc, out);
 }
 
 void GradientOperator::divergence(const double* q, int nc, double* out,
@@ -139,18 +113,15 @@ void GradientOperator::divergence(const double* q, int nc, double* out,
   const ParticleId* r = subset ? subset->data() : nullptr;
   const Offset* off = offsets_.data();
   const ParticleId* col = cols_.data();
-  const double* w = w_.data();
-  if (dim_ == 2 && nc == 1) return gather_divergence<2, 1>(n, r, off, col, w, q, out);
-  if (dim_ == 2 && nc == 2) return gather_divergence<2, 2>(n, r, off, col, w, q, out);
-  if (dim_ == 3 && nc == 1) return gather_divergence<3, 1>(n, r, off, col, w, q, out);
-  if (dim_ == 3 && nc == 3) return gather_divergence<3, 3>(n, r, off, col, w, q, out);
-  unsupported(dim_, nc);
+  if (!w32_.empty()) return divergence_with(dim_, n, r, off, col, w32_.data(), q, nc, out);
+  divergence_with(dim_, n, r, off, col, w_.data(), q, nc, out);
 }
 
 std::size_t GradientOperator::memory_bytes() const {
   return (offsets_.size() + t_offsets_.size()) * sizeof(Offset) +
          (cols_.size() + t_cols_.size()) * sizeof(ParticleId) +
-         (w_.size() + t_w_.size() + diag_.size()) * sizeof(double);
+         (w_.size() + t_w_.size() + diag_.size()) * sizeof(double) +
+         (w32_.size() + t_w32_.size()) * sizeof(float);
 }
 
 }  // namespace perinom

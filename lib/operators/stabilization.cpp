@@ -107,7 +107,7 @@ void Stabilization::add_row(std::size_t r, RowAccumulator& acc, int copies) cons
     }
     add(static_cast<ParticleId>(r), scale * (wsum - dot(s, G.diagonal(r), d)));
     for (Offset k = G.offsets()[r]; k < G.offsets()[r + 1]; ++k)
-      add(G.cols()[k], scale * (-wv_[k] - dot(s, G.weight(k), d)));
+      add(G.cols()[k], scale * (-wv_[k] - dot(s, G.weight(k).data(), d)));
   }
   // Row r of M_i for every i whose family holds r: A_r = a_ir = w_ir V_r xi_ir.
   for (Offset t = G.dual_offsets()[r]; t < G.dual_offsets()[r + 1]; ++t) {
@@ -118,7 +118,7 @@ void Stabilization::add_row(std::size_t r, RowAccumulator& acc, int copies) cons
     for (int c = 0; c < d; ++c) a[c] = t_wv_[t] * (xr[c] - xi[c]);
     add(static_cast<ParticleId>(r), scale * t_wv_[t]);
     add(i, scale * (-t_wv_[t] - dot(a, G.diagonal(i), d)));
-    for (Offset k = G.offsets()[i]; k < G.offsets()[i + 1]; ++k) add(G.cols()[k], -scale * dot(a, G.weight(k), d));
+    for (Offset k = G.offsets()[i]; k < G.offsets()[i + 1]; ++k) add(G.cols()[k], -scale * dot(a, G.weight(k).data(), d));
   }
 }
 

@@ -40,7 +40,7 @@ void for_each_tangent_row(
         }
       };
       add_column(static_cast<ParticleId>(m), G.diagonal(m));
-      for (Offset k = off[m]; k < off[m + 1]; ++k) add_column(cols[k], G.weight(k));
+      for (Offset k = off[m]; k < off[m + 1]; ++k) add_column(cols[k], G.weight(k).data());
     };
 #pragma omp for schedule(dynamic, 64)
     for (std::size_t i = 0; i < n; ++i) {

@@ -139,6 +139,8 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
   opt.influence = s.discretization.weight;
   opt.stabilization = s.model.stabilization;
   opt.stabilization_matrix_free = s.model.stabilization_storage == "matrix_free";
+  opt.weight_precision =
+      s.model.weight_precision == "single" ? WeightPrecision::float32 : WeightPrecision::float64;
   parse_formulation(s.model.formulation, opt.formulation);
   Surface surface;
   if (opt.formulation != Formulation::classical) {

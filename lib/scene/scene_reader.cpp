@@ -110,6 +110,9 @@ void read_model(Fields f, Scene& s) {
   s.model.stabilization_storage = f.text("stabilization_storage", "assembled");
   if (s.model.stabilization_storage != "assembled" && s.model.stabilization_storage != "matrix_free")
     f.fail("stabilization_storage", "must be assembled or matrix_free");
+  s.model.weight_precision = f.text("weight_precision", "double");
+  if (s.model.weight_precision != "double" && s.model.weight_precision != "single")
+    f.fail("weight_precision", "must be double or single");
   f.finish();
 }
 

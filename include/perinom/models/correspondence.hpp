@@ -34,6 +34,8 @@ struct CorrespondenceOptions {
   /// true: apply S matrix-free (16 bytes per bond, about 25% slower per force evaluation);
   /// false: assemble S0 once (about 75 bytes per bond in 3-D, faster). Same answer.
   bool stabilization_matrix_free = false;
+  /// Storage of G's weights (the stabilization and tangents use them as stored).
+  WeightPrecision weight_precision = WeightPrecision::float64;
 };
 
 class CorrespondenceModel : public Model {

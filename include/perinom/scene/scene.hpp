@@ -28,6 +28,7 @@ struct ModelSpec {
   std::string formulation = "improved";
   double stabilization = 0.5;  ///< C_hg
   std::string stabilization_storage = "assembled";  ///< assembled | matrix_free
+  std::string weight_precision = "double";          ///< double | single (G's stored weights)
 };
 
 /// One boundary condition on a region. Each of the three may be given: components to
