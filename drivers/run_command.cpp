@@ -62,7 +62,7 @@ void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const st
 void write_history(const std::string& path, const History& h) {
   io::CsvWriter csv(path);
   csv.header(h.columns);
-  for (const auto& r : h.rows) csv.row(r);
+  for (std::size_t r = 0; r < h.rows(); ++r) csv.row(h.row(r));
   csv.close();
 }
 

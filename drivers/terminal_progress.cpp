@@ -30,8 +30,8 @@ void TerminalProgress::update(const ProgressSample& s) {
   if (tty_) {
     if (now - last_print_ < 0.1) return;
     const int width = 30, filled = static_cast<int>(fraction * width);
-    std::printf("\r%s [%-*s] it %lld", label_, width, std::string(filled, '#').c_str(),
-                static_cast<long long>(s.iteration));
+    static const char bar[] = "##############################";  // width characters; no allocation
+    std::printf("\r%s [%-*.*s] it %lld", label_, width, filled, bar, static_cast<long long>(s.iteration));
     if (s.load_steps > 1) std::printf(" step %d/%d", s.load_step, s.load_steps);
     if (s.target > 0.0) std::printf(" residual %.2e -> %.0e", s.residual, s.target);
     if (left >= 0.0) std::printf(" left ~%.0fs ", left);

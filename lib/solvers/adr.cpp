@@ -18,6 +18,7 @@ void solve_adr_steps(Model& model, const Loading& loading, const AdrOptions& opt
   std::vector<double> v(n), f(n), f_old(n), fint(n), last_good(u);
   rep.history.columns = {"iteration", "load_factor", "residual", "displacement_change",
                          "damping"};
+  rep.history.reserve(opt.max_iterations / std::max<std::int64_t>(opt.history_every, 1) + 1);
   ProgressSample sample;
   sample.limit = opt.max_iterations;
   sample.load_steps = opt.load_steps;
@@ -85,7 +86,7 @@ void solve_adr_steps(Model& model, const Loading& loading, const AdrOptions& opt
       r = residual(s);
       ++rep.iterations;
       if (rep.iterations % opt.history_every == 0)
-        rep.history.rows.push_back({double(rep.iterations), s, r, du, c});
+        rep.history.add({double(rep.iterations), s, r, du, c});
       observe(rep.iterations, s, u);
       if (progress && rep.iterations % 50 == 0) {
         sample.iteration = rep.iterations;

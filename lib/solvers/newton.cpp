@@ -133,7 +133,7 @@ SolveReport solve_newton(CorrespondenceModel& model, const Loading& loading,
     loading.zero_fixed(R.data());
     const double load = system.load_norm(u.data(), data.s);
     rep.residual = load > 0.0 ? norm(R) / load : norm(R);
-    rep.history.rows.push_back({double(step), data.s, double(iterations), rep.residual});
+    rep.history.add({double(step), data.s, double(iterations), rep.residual});
     if (progress) {
       sample.iteration = rep.iterations, sample.load_step = step, sample.residual = rep.residual;
       progress->update(sample);

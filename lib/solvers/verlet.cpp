@@ -30,6 +30,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   std::vector<double> a(n), fint(n), u_old(n), last_good(u);
   rep.history.columns = {"step", "time", "kinetic_energy", "strain_energy", "external_work",
                          "total_energy"};
+  rep.history.reserve(opt.steps / std::max<std::int64_t>(opt.history_every, 1) + 2);
   auto factor = [&](double t) { return opt.ramp_time > 0.0 ? std::min(1.0, t / opt.ramp_time) : 1.0; };
   double work = 0.0;  // external work, trapezoidal in time
   auto accelerate = [&](double t) {
@@ -48,7 +49,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     double kin = 0.0;
     for (std::size_t k = 0; k < n; ++k) kin += 0.5 * mass[k] * v[k] * v[k];
     const double strain = model.energy(u.data());
-    rep.history.rows.push_back({double(step), t, kin, strain, work, kin + strain - work});
+    rep.history.add({double(step), t, kin, strain, work, kin + strain - work});
   };
   double t = 0.0;
   loading.impose(factor(t), u.data());

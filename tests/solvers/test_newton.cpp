@@ -102,7 +102,7 @@ TEST_CASE("load steps reuse the factorization and end at the same answer", "[sol
   opt.load_steps = 4;
   const SolveReport rep = solve_newton(*p.model, p.loading, opt, four);
   REQUIRE(rep.converged);
-  CHECK(rep.history.rows.size() == 4);
+  CHECK(rep.history.rows() == 4);
   CHECK(rep.iterations == 4);
   CHECK(relative_difference(four, one) < 1e-9);
 }

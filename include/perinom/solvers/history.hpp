@@ -1,16 +1,31 @@
 #pragma once
 /// @file A solver's iteration history, and an observer of intermediate states.
+#include <algorithm>
 #include <cstdint>
+#include <initializer_list>
 #include <functional>
 #include <string>
 #include <vector>
 
 namespace perinom {
 
-/// Named columns, one row per recorded iteration.
+/// Named columns, one row per recorded iteration, stored flat (row-major) so recording a
+/// row inside a time loop does not allocate once reserve() has made room for it.
 struct History {
   std::vector<std::string> columns;
-  std::vector<std::vector<double>> rows;
+  std::vector<double> values;
+
+  std::size_t rows() const { return columns.empty() ? 0 : values.size() / columns.size(); }
+  double at(std::size_t row, std::size_t column) const { return values[row * columns.size() + column]; }
+  std::vector<double> row(std::size_t r) const {
+    return {values.begin() + r * columns.size(), values.begin() + (r + 1) * columns.size()};
+  }
+  void add(std::initializer_list<double> row) { values.insert(values.end(), row); }
+  /// Room for `rows` rows, at most 65,536 (a run recording more grows by doubling).
+  void reserve(std::int64_t rows) {
+    values.reserve(static_cast<std::size_t>(std::min<std::int64_t>(std::max<std::int64_t>(rows, 0), 65536)) *
+                   columns.size());
+  }
 };
 
 /// Called with (iteration or step, load factor or time, u) every `every` iterations
