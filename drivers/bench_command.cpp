@@ -16,6 +16,8 @@
 #include "perinom/models/correspondence.hpp"
 #include "perinom/neighbors/search.hpp"
 #include "perinom/operators/scalar_csr.hpp"
+#include "perinom/solvers/adr.hpp"
+#include "perinom/solvers/verlet.hpp"
 
 namespace perinom::cli {
 namespace {
@@ -32,6 +34,46 @@ double stream_triad_gbs() {
     best = std::min(best, wall_seconds() - t0);
   }
   return 3.0 * sizeof(double) * n / best / 1e9 + 0.0 * a[n / 2];
+}
+
+/// Seconds per call of f: after a warm-up call, at least 3 calls and 2 s.
+template <class F>
+double seconds_per_call(F&& f) {
+  f();
+  int calls = 0;
+  const double t0 = wall_seconds();
+  while (calls < 3 || wall_seconds() - t0 < 2.0) {
+    f();
+    ++calls;
+  }
+  return (wall_seconds() - t0) / calls;
+}
+
+/// Seconds per iteration of an explicit solver on the lattice with its bottom layer fixed and
+/// a downward force on its top layer: `solve(loading, observer)` runs first + k iterations,
+/// timed between the observer's calls at iterations `first` and first + k (the stiffness row
+/// sums every explicit solver computes before its loop are not counted).
+template <class Solve>
+double seconds_per_iteration(const CorrespondenceModel& model, const PointCloud& cloud, long n,
+                             std::int64_t first, std::int64_t k, Solve&& solve) {
+  const int d = cloud.dim;
+  Loading loading;
+  loading.force.assign(model.dofs(), 0.0);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const double h = cloud.x[i * d + d - 1];
+    if (h < 1.0)
+      for (int a = 0; a < d; ++a) loading.fix(static_cast<std::int64_t>(i * d + a), 0.0);
+    if (h > double(n) - 1.0) loading.force[i * d + d - 1] = -1e-3;
+  }
+  double t_first = 0.0, t_last = 0.0;
+  Observer timing;
+  timing.every = 1;
+  timing.call = [&](std::int64_t it, double, const std::vector<double>&) {
+    if (it == first) t_first = wall_seconds();
+    if (it == first + k) t_last = wall_seconds();
+  };
+  solve(loading, timing);
+  return (t_last - t_first) / double(k);
 }
 
 }  // namespace
@@ -57,45 +99,68 @@ int bench(const Options& opt) {
   CorrespondenceOptions copt;
   copt.stabilization = opt.stabilization;
   copt.stabilization_matrix_free = opt.matrix_free;
+  copt.weight_precision = opt.single_precision ? WeightPrecision::float32 : WeightPrecision::float64;
   CorrespondenceModel model(cloud, fam, mat, copt);
   const double setup = wall_seconds() - t0;
 
   std::vector<double> u(model.dofs()), f(model.dofs());
   for (std::size_t k = 0; k < u.size(); ++k) u[k] = 1e-3 * std::sin(0.37 * k);
-  model.internal_force(u.data(), f.data());  // warm up
-  int evals = 0;
-  const double t1 = wall_seconds();
-  while (evals < 3 || wall_seconds() - t1 < 2.0) {
-    model.internal_force(u.data(), f.data());
-    ++evals;
-  }
-  const double per_eval = (wall_seconds() - t1) / evals;
+  const double per_eval = seconds_per_call([&] { model.internal_force(u.data(), f.data()); });
+  // The two products alone, for the roofline (H and Q are the model's own sizes).
+  std::vector<double> H(model.particles() * d * d), Q(H.size(), 1.0);
+  const double per_grad = seconds_per_call([&] { model.G().apply(u.data(), d, H.data()); });
+  const double per_transpose = seconds_per_call([&] { model.G().apply_transpose(Q.data(), d, f.data()); });
+  // One ADR iteration and one Velocity Verlet step, each over about 2 s.
+  const std::int64_t first = 5, k = std::max<std::int64_t>(5, std::llround(2.0 / per_eval));
+  const double adr_iteration = seconds_per_iteration(model, cloud, opt.n, first, k, [&](const Loading& l, const Observer& o) {
+    AdrOptions a;
+    a.tolerance = 0.0;  // never converged: exactly first + k iterations
+    a.max_iterations = first + k;
+    std::vector<double> x;
+    solve_adr(model, l, a, x, nullptr, o);
+  });
+  const double verlet_step = seconds_per_iteration(model, cloud, opt.n, first, k, [&](const Loading& l, const Observer& o) {
+    VerletOptions v;
+    v.steps = first + k;
+    std::vector<double> x, y;
+    solve_verlet(model, l, v, x, y, nullptr, o);
+  });
+
   const double bonds = double(fam.bonds());
   // Operator bytes streamed once per evaluation: G and G^T (index + d weights per bond),
   // plus S0 (index + value per entry) when assembled, or the matrix-free stabilization's two
   // bond passes (index + w V per bond each).
+  const double w_bytes = opt.single_precision ? sizeof(float) : sizeof(double);
+  const double product_bytes = bonds * (sizeof(ParticleId) + d * w_bytes);
   const ScalarCsr* S0 = model.assembled_stabilization();
-  const double s_bytes = S0 ? double(S0->nonzeros()) * (sizeof(ParticleId) + sizeof(double)) : 0.0;
-  const double bytes = 2.0 * bonds * (sizeof(ParticleId) + d * sizeof(double)) +
-                       (!model.stabilization() ? 0.0
-                        : opt.matrix_free ? 2.0 * bonds * (sizeof(ParticleId) + sizeof(double))
-                                          : s_bytes);
+  const double s_bytes = !model.stabilization() ? 0.0
+                         : S0 ? double(S0->nonzeros()) * (sizeof(ParticleId) + sizeof(double))
+                              : 2.0 * bonds * (sizeof(ParticleId) + sizeof(double));
+  const double bytes = 2.0 * product_bytes + s_bytes;
   const double gbs = bytes / per_eval / 1e9, stream = stream_triad_gbs();
   std::printf("particles                %zu\n", cloud.size());
-  std::printf("bonds                    %.0f\n", bonds);
+  std::printf("bonds                    %.0f (%.1f per particle)\n", bonds, bonds / cloud.size());
   std::printf("threads                  %d\n", omp_get_max_threads());
-  std::printf("stabilization C_hg       %g (%s)\n", opt.stabilization, opt.matrix_free ? "matrix-free" : "assembled");
+  std::printf("weights                  %s\n", opt.single_precision ? "single precision (float)" : "double precision");
+  std::printf("stabilization C_hg       %g (%s)\n", opt.stabilization,
+              opt.stabilization == 0.0 ? "none" : opt.matrix_free ? "matrix-free" : "assembled");
   std::printf("setup (search+assembly)  %.3f s\n", setup);
   std::printf("ms per evaluation        %.3f\n", per_eval * 1e3);
+  std::printf("  gradient product G u   %.3f ms (%.2f GB/s)\n", per_grad * 1e3, product_bytes / per_grad / 1e9);
+  std::printf("  transposed G^T q       %.3f ms (%.2f GB/s)\n", per_transpose * 1e3, product_bytes / per_transpose / 1e9);
+  std::printf("ms per ADR iteration     %.3f\n", adr_iteration * 1e3);
+  std::printf("ms per Verlet step       %.3f\n", verlet_step * 1e3);
   std::printf("bond evaluations / s     %.3e\n", bonds / per_eval);
-  std::printf("operator bytes / eval    %.3e\n", bytes);
+  std::printf("operator bytes / eval    %.3e (%.1f per bond)\n", bytes, bytes / bonds);
   std::printf("achieved                 %.2f GB/s\n", gbs);
-  std::printf("STREAM triad             %.2f GB/s (ratio %.2f)\n", stream, gbs / stream);
+  std::printf("STREAM triad             %.2f GB/s (ratio %.2f); bound %.3e bond evaluations / s\n", stream,
+              gbs / stream, stream * 1e9 / (bytes / bonds));
   std::printf("{\"particles\": %zu, \"bonds\": %.0f, \"threads\": %d, \"stabilization\": %g, \"matrix_free\": %s, "
-              "\"seconds_per_evaluation\": %.6e, \"bond_evaluations_per_second\": %.6e, "
-              "\"bytes_per_evaluation\": %.6e, \"achieved_gbs\": %.3f, \"stream_triad_gbs\": %.3f}\n",
-              cloud.size(), bonds, omp_get_max_threads(), opt.stabilization, opt.matrix_free ? "true" : "false", per_eval,
-              bonds / per_eval, bytes, gbs, stream);
+              "\"single_precision\": %s, \"seconds_per_evaluation\": %.6e, \"seconds_per_adr_iteration\": %.6e, \"seconds_per_verlet_step\": %.6e, "
+              "\"bond_evaluations_per_second\": %.6e, \"bytes_per_evaluation\": %.6e, \"achieved_gbs\": %.3f, "
+              "\"stream_triad_gbs\": %.3f}\n",
+              cloud.size(), bonds, omp_get_max_threads(), opt.stabilization, opt.matrix_free ? "true" : "false",
+              opt.single_precision ? "true" : "false", per_eval, adr_iteration, verlet_step, bonds / per_eval, bytes, gbs, stream);
   return 0;
 }
 

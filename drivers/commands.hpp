@@ -13,6 +13,7 @@ struct Options {
   long n = 20;
   double stabilization = 0.5;
   bool matrix_free = false;
+  bool single_precision = false;  ///< G's weights stored as float
 };
 
 int run(const Options& opt);
