@@ -98,7 +98,8 @@ int bench(const Options& opt) {
   mat.plane = d == 2 ? PlaneCondition::strain : PlaneCondition::none;
   CorrespondenceOptions copt;
   copt.stabilization = opt.stabilization;
-  copt.stabilization_matrix_free = opt.matrix_free;
+  if (!parse_stabilization_storage(opt.storage, copt.stabilization_storage))
+    throw InputError("--storage must be auto, fused, assembled or matrix_free");
   copt.weight_precision = opt.single_precision ? WeightPrecision::float32 : WeightPrecision::float64;
   CorrespondenceModel model(cloud, fam, mat, copt);
   const double setup = wall_seconds() - t0;
@@ -122,28 +123,33 @@ int bench(const Options& opt) {
   const double verlet_step = seconds_per_iteration(model, cloud, opt.n, first, k, [&](const Loading& l, const Observer& o) {
     VerletOptions v;
     v.steps = first + k;
+    v.history_every = first + k;  // energies once, like the thermo output of LAMMPS's run
     std::vector<double> x, y;
     solve_verlet(model, l, v, x, y, nullptr, o);
   });
 
   const double bonds = double(fam.bonds());
   // Operator bytes streamed once per evaluation: G and G^T (index + d weights per bond),
-  // plus S0 (index + value per entry) when assembled, or the matrix-free stabilization's two
-  // bond passes (index + w V per bond each).
+  // plus, for S: one more weight per bond in G's pass (fused), S0 (index + value per entry;
+  // assembled), or the matrix-free stabilization's two bond passes (index + w V per bond each).
   const double w_bytes = opt.single_precision ? sizeof(float) : sizeof(double);
   const double product_bytes = bonds * (sizeof(ParticleId) + d * w_bytes);
   const ScalarCsr* S0 = model.assembled_stabilization();
-  const double s_bytes = !model.stabilization() ? 0.0
+  const double s_bytes = !model.stabilization()       ? 0.0
+                         : model.fused_stabilization() ? bonds * w_bytes
                          : S0 ? double(S0->nonzeros()) * (sizeof(ParticleId) + sizeof(double))
                               : 2.0 * bonds * (sizeof(ParticleId) + sizeof(double));
+  const char* storage = !model.stabilization()       ? "none"
+                        : model.fused_stabilization() ? "fused"
+                        : S0                          ? "assembled"
+                                                      : "matrix_free";
   const double bytes = 2.0 * product_bytes + s_bytes;
   const double gbs = bytes / per_eval / 1e9, stream = stream_triad_gbs();
   std::printf("particles                %zu\n", cloud.size());
   std::printf("bonds                    %.0f (%.1f per particle)\n", bonds, bonds / cloud.size());
   std::printf("threads                  %d\n", omp_get_max_threads());
   std::printf("weights                  %s\n", opt.single_precision ? "single precision (float)" : "double precision");
-  std::printf("stabilization C_hg       %g (%s)\n", opt.stabilization,
-              opt.stabilization == 0.0 ? "none" : opt.matrix_free ? "matrix-free" : "assembled");
+  std::printf("stabilization C_hg       %g (%s)\n", opt.stabilization, storage);
   std::printf("setup (search+assembly)  %.3f s\n", setup);
   std::printf("ms per evaluation        %.3f\n", per_eval * 1e3);
   std::printf("  gradient product G u   %.3f ms (%.2f GB/s)\n", per_grad * 1e3, product_bytes / per_grad / 1e9);
@@ -155,11 +161,11 @@ int bench(const Options& opt) {
   std::printf("achieved                 %.2f GB/s\n", gbs);
   std::printf("STREAM triad             %.2f GB/s (ratio %.2f); bound %.3e bond evaluations / s\n", stream,
               gbs / stream, stream * 1e9 / (bytes / bonds));
-  std::printf("{\"particles\": %zu, \"bonds\": %.0f, \"threads\": %d, \"stabilization\": %g, \"matrix_free\": %s, "
+  std::printf("{\"particles\": %zu, \"bonds\": %.0f, \"threads\": %d, \"stabilization\": %g, \"storage\": \"%s\", "
               "\"single_precision\": %s, \"seconds_per_evaluation\": %.6e, \"seconds_per_adr_iteration\": %.6e, \"seconds_per_verlet_step\": %.6e, "
               "\"bond_evaluations_per_second\": %.6e, \"bytes_per_evaluation\": %.6e, \"achieved_gbs\": %.3f, "
               "\"stream_triad_gbs\": %.3f}\n",
-              cloud.size(), bonds, omp_get_max_threads(), opt.stabilization, opt.matrix_free ? "true" : "false",
+              cloud.size(), bonds, omp_get_max_threads(), opt.stabilization, storage,
               opt.single_precision ? "true" : "false", per_eval, adr_iteration, verlet_step, bonds / per_eval, bytes, gbs, stream);
   return 0;
 }

@@ -12,7 +12,7 @@ struct Options {
   int dimension = 3;
   long n = 20;
   double stabilization = 0.5;
-  bool matrix_free = false;
+  std::string storage = "auto";  ///< the stabilization storage (bench)
   bool single_precision = false;  ///< G's weights stored as float
 };
 

@@ -20,7 +20,7 @@ void usage() {
                "usage:\n"
                "  perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N]\n"
                "  perinom check SCENE [--set dotted.key=value]...\n"
-               "  perinom bench force --dimension 2|3 --n N [--threads T] [--stabilization C] [--matrix-free] [--single]\n");
+               "  perinom bench force --dimension 2|3 --n N [--threads T] [--stabilization C] [--storage auto|fused|assembled|matrix_free] [--single]\n");
 }
 
 }  // namespace
@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
           throw InputError("option --stabilization: '" + v + "' is not a number");
         }
       }
-      else if (a == "--matrix-free") opt.matrix_free = true;
+      else if (a == "--storage") opt.storage = value();
       else if (a == "--single") opt.single_precision = true;
       else if (a.rfind("--", 0) == 0) throw InputError("unknown option " + a);
       else opt.positional.push_back(a);

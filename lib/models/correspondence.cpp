@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "perinom/core/error.hpp"
 #include "perinom/operators/bond_weights.hpp"
 #include "perinom/operators/stabilization.hpp"
 #include "perinom/operators/tangent_rows.hpp"
@@ -14,6 +15,15 @@ bool parse_formulation(const std::string& name, Formulation& f) {
   if (name == "classical") f = Formulation::classical;
   else if (name == "improved") f = Formulation::improved;
   else if (name == "strong") f = Formulation::strong;
+  else return false;
+  return true;
+}
+
+bool parse_stabilization_storage(const std::string& name, StabilizationStorage& s) {
+  if (name == "auto") s = StabilizationStorage::automatic;
+  else if (name == "fused") s = StabilizationStorage::fused;
+  else if (name == "assembled") s = StabilizationStorage::assembled;
+  else if (name == "matrix_free") s = StabilizationStorage::matrix_free;
   else return false;
   return true;
 }
@@ -34,7 +44,17 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
   if (options.stabilization > 0.0) {
     const auto c = stabilization_coefficients(weights, dim_, options.stabilization, material.mu());
     S_.emplace(cloud, families, weights, G_, c);
-    if (options.stabilization_matrix_free) {
+    const StabilizationStorage storage = options.stabilization_storage;
+    if (storage == StabilizationStorage::fused || storage == StabilizationStorage::automatic) {
+      F_ = FusedStabilization::make(cloud, families, weights, G_, c);
+      if (!F_ && storage == StabilizationStorage::fused)
+        throw InputError("model.stabilization_storage: fused needs symmetric families (a horizon "
+                         "radius, not a neighbour count); use assembled or matrix_free");
+    }
+    if (F_) {
+      B_.resize(particles() * dim_ * dim_);
+      lap_.resize(particles() * dim_);
+    } else if (storage == StabilizationStorage::matrix_free) {
       B_.resize(particles() * dim_ * dim_);
       r_.resize(particles() * dim_);
     } else {
@@ -52,9 +72,13 @@ void CorrespondenceModel::gradient(const double* u, double* H) const { G_.apply(
 void CorrespondenceModel::internal_force(const double* u, double* f) {
   const int d2 = dim_ * dim_;
   const std::size_t n = particles();
-  G_.apply(u, dim_, H_.data());
-  const bool stabilized = S_ && !S_assembled_;  // matrix-free stabilization
-  if (stabilized) S_->bond_terms(u, H_.data(), B_.data(), r_.data());
+  const bool fused = F_.has_value();
+  if (fused) G_.apply_with_laplacian(u, H_.data(), lap_.data());
+  else G_.apply(u, dim_, H_.data());
+  const bool matrix_free = S_ && !S_assembled_ && !fused;
+  if (matrix_free) S_->bond_terms(u, H_.data(), B_.data(), r_.data());
+  if (fused) F_->tensor_terms(H_.data(), B_.data());
+  const bool stabilized = matrix_free || fused;  // G^T(-B) joins the transposed product
   const bool strong_rows = formulation_ != Formulation::classical;
   // Q = V P - B: the stabilization's G^T(-B) rides along with the weak-form product.
 #pragma omp parallel for schedule(static)
@@ -85,7 +109,12 @@ void CorrespondenceModel::internal_force(const double* u, double* f) {
       }
     }
   }
-  if (stabilized) S_->add_direct(u, H_.data(), r_.data(), f);
+  if (matrix_free) S_->add_direct(u, H_.data(), r_.data(), f);
+  if (fused) {
+    const std::size_t m = lap_.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < m; ++k) f[k] -= lap_[k];
+  }
   if (S_assembled_) S_assembled_->apply_add(u, dim_, f);
 }
 
@@ -101,6 +130,12 @@ double CorrespondenceModel::energy(const double* u) {
     if (S_assembled_) {
       std::fill(Su_.begin(), Su_.end(), 0.0);
       S_assembled_->apply_add(u, dim_, Su_.data());
+    } else if (F_) {
+      // S u = -lap(u) - G^T(T).
+      G_.apply_with_laplacian(u, H_.data(), lap_.data());
+      F_->tensor_terms(H_.data(), B_.data());
+      G_.apply_transpose(B_.data(), dim_, Su_.data());
+      for (std::size_t k = 0; k < Su_.size(); ++k) Su_[k] = -Su_[k] - lap_[k];
     } else {
       S_->bond_terms(u, H_.data(), B_.data(), r_.data());
       G_.apply_transpose(B_.data(), dim_, Su_.data());
@@ -143,10 +178,14 @@ std::vector<double> CorrespondenceModel::stiffness_row_sums() const {
 std::vector<std::pair<std::string, std::size_t>> CorrespondenceModel::memory() const {
   std::vector<std::pair<std::string, std::size_t>> m;
   m.emplace_back("gradient operator G and G^T", G_.memory_bytes());
-  if (S_) m.emplace_back(S_assembled_ ? "stabilization S (assembled)" : "stabilization (matrix-free)",
-                        S_->memory_bytes() + (S_assembled_ ? S_assembled_->memory_bytes() : 0));
+  if (S_) m.emplace_back(S_assembled_ ? "stabilization S (assembled)"
+                        : F_        ? "stabilization (fused)"
+                                    : "stabilization (matrix-free)",
+                        S_->memory_bytes() + (S_assembled_ ? S_assembled_->memory_bytes() : 0) +
+                            (F_ ? F_->memory_bytes() : 0));
   m.emplace_back("workspaces (grad u, V.P, P, B, r)",
-                 (H_.size() + Q_.size() + P_.size() + B_.size() + r_.size() + Su_.size()) * sizeof(double));
+                 (H_.size() + Q_.size() + P_.size() + B_.size() + r_.size() + Su_.size() + lap_.size()) *
+                     sizeof(double));
   if (formulation_ != Formulation::classical)
     m.emplace_back("surface normals and band E",
                    surface_.normal_over_h.size() * sizeof(double) +

@@ -117,11 +117,31 @@ void GradientOperator::divergence(const double* q, int nc, double* out,
   divergence_with(dim_, n, r, off, col, w_.data(), q, nc, out);
 }
 
+void GradientOperator::set_bond_scalars(const std::vector<double>& c) {
+  if (c.size() != bonds()) throw std::invalid_argument("GradientOperator: one bond scalar per bond expected");
+  std::vector<double>().swap(c_);
+  std::vector<float>().swap(c32_);
+  if (precision_ == WeightPrecision::float32) c32_.assign(c.begin(), c.end());
+  else c_ = c;
+}
+
+void GradientOperator::apply_with_laplacian(const double* f, double* out, double* lap) const {
+  if (!has_bond_scalars()) throw std::logic_error("GradientOperator: apply_with_laplacian without bond scalars");
+  namespace k = kernels;
+  const std::size_t n = rows();
+  const Offset* off = offsets_.data();
+  const ParticleId* col = cols_.data();
+  if (dim_ == 2 && !w32_.empty()) return k::gradient2_laplacian(n, off, col, w32_.data(), c32_.data(), f, out, lap);
+  if (dim_ == 2) return k::gradient2_laplacian(n, off, col, w_.data(), c_.data(), f, out, lap);
+  if (!w32_.empty()) return k::gradient3_laplacian(n, off, col, w32_.data(), c32_.data(), f, out, lap);
+  k::gradient3_laplacian(n, off, col, w_.data(), c_.data(), f, out, lap);
+}
+
 std::size_t GradientOperator::memory_bytes() const {
   return (offsets_.size() + t_offsets_.size()) * sizeof(Offset) +
          (cols_.size() + t_cols_.size()) * sizeof(ParticleId) +
-         (w_.size() + t_w_.size() + diag_.size()) * sizeof(double) +
-         (w32_.size() + t_w32_.size()) * sizeof(float);
+         (w_.size() + t_w_.size() + diag_.size() + c_.size()) * sizeof(double) +
+         (w32_.size() + t_w32_.size() + c32_.size()) * sizeof(float);
 }
 
 }  // namespace perinom

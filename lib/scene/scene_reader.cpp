@@ -107,9 +107,10 @@ void read_model(Fields f, Scene& s) {
     f.fail("formulation", "must be classical, improved or strong");
   s.model.stabilization = f.number("stabilization", 0.5);
   if (s.model.stabilization < 0.0) f.fail("stabilization", "must be zero or positive");
-  s.model.stabilization_storage = f.text("stabilization_storage", "assembled");
-  if (s.model.stabilization_storage != "assembled" && s.model.stabilization_storage != "matrix_free")
-    f.fail("stabilization_storage", "must be assembled or matrix_free");
+  s.model.stabilization_storage = f.text("stabilization_storage", "auto");
+  StabilizationStorage storage;
+  if (!parse_stabilization_storage(s.model.stabilization_storage, storage))
+    f.fail("stabilization_storage", "must be auto, fused, assembled or matrix_free");
   s.model.weight_precision = f.text("weight_precision", "double");
   if (s.model.weight_precision != "double" && s.model.weight_precision != "single")
     f.fail("weight_precision", "must be double or single");

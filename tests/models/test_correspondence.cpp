@@ -2,9 +2,11 @@
 #include <omp.h>
 
 #include <cstring>
+#include <memory>
 
 #include "../support/clouds.hpp"
 #include "perinom/geometry/surface.hpp"
+#include "perinom/core/error.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/neighbors/search.hpp"
 #include "perinom/operators/tangent_rows.hpp"
@@ -177,7 +179,8 @@ TEST_CASE("the force is bitwise independent of the thread count", "[models]") {
   }
 }
 
-TEST_CASE("the matrix-free and the assembled stabilization give the same force", "[models]") {
+TEST_CASE("the fused, matrix-free and assembled stabilizations give the same force", "[models]") {
+  using Storage = StabilizationStorage;
   for (const Case& k : cases)
     for (const Formulation form : {Formulation::classical, Formulation::improved}) {
       const int side = k.dim == 2 ? 10 : 6;
@@ -186,20 +189,35 @@ TEST_CASE("the matrix-free and the assembled stabilization give the same force",
       box.dim = k.dim;
       for (int a = 0; a < k.dim; ++a) box.max[a] = side;
       const Families f = families(c, k.knn);
-      CorrespondenceModel stored(c, f, material(k.dim, k.plane), {Influence::inverse_square, 0.5, form, false},
-                                 find_surface(box, c, 2.0));
-      CorrespondenceModel free(c, f, material(k.dim, k.plane), {Influence::inverse_square, 0.5, form, true},
-                               find_surface(box, c, 2.0));
-      REQUIRE(stored.assembled_stabilization() != nullptr);
-      REQUIRE(free.assembled_stabilization() == nullptr);
-      const auto u = test::random_field(stored.dofs(), 1e-4, 21);
-      std::vector<double> fs(u.size()), ff(u.size());
-      stored.internal_force(u.data(), fs.data());
-      free.internal_force(u.data(), ff.data());
-      double err = 0.0;
-      for (std::size_t m = 0; m < u.size(); ++m) err = std::max(err, std::abs(fs[m] - ff[m]));
+      auto make = [&](Storage storage) {
+        CorrespondenceOptions o{Influence::inverse_square, 0.5, form};
+        o.stabilization_storage = storage;
+        return std::make_unique<CorrespondenceModel>(c, f, material(k.dim, k.plane), o, find_surface(box, c, 2.0));
+      };
       INFO("dim " << k.dim << (k.knn ? " knn" : " radius") << " formulation " << int(form));
-      CHECK(err <= 1e-11 * test::max_abs(fs));
-      CHECK(free.energy(u.data()) == Approx(stored.energy(u.data())).epsilon(1e-11));
+      const auto stored = make(Storage::assembled);
+      REQUIRE(stored->assembled_stabilization() != nullptr);
+      const auto u = test::random_field(stored->dofs(), 1e-4, 21);
+      std::vector<double> fs(u.size()), fo(u.size());
+      stored->internal_force(u.data(), fs.data());
+      // k nearest neighbours make asymmetric families: no fused S, and auto falls back.
+      if (k.knn) {
+        CHECK_THROWS_AS(make(Storage::fused), InputError);
+        CHECK(make(Storage::automatic)->assembled_stabilization() != nullptr);
+      } else {
+        CHECK(make(Storage::automatic)->fused_stabilization());
+      }
+      for (const Storage other : {Storage::matrix_free, Storage::fused}) {
+        if (other == Storage::fused && k.knn) continue;
+        const auto model = make(other);
+        REQUIRE(model->assembled_stabilization() == nullptr);
+        REQUIRE(model->fused_stabilization() == (other == Storage::fused));
+        model->internal_force(u.data(), fo.data());
+        double err = 0.0;
+        for (std::size_t m = 0; m < u.size(); ++m) err = std::max(err, std::abs(fs[m] - fo[m]));
+        INFO("storage " << int(other));
+        CHECK(err <= 1e-11 * test::max_abs(fs));
+        CHECK(model->energy(u.data()) == Approx(stored->energy(u.data())).epsilon(1e-11));
+      }
     }
 }

@@ -17,6 +17,7 @@
 #include "perinom/neighbors/families.hpp"
 #include "perinom/operators/gradient_operator.hpp"
 #include "perinom/operators/influence.hpp"
+#include "perinom/operators/fused_stabilization.hpp"
 #include "perinom/operators/stabilization.hpp"
 
 namespace perinom {
@@ -26,14 +27,22 @@ enum class Formulation { classical, improved, strong };
 /// Parses "classical", "improved", "strong"; false if unknown.
 bool parse_formulation(const std::string& name, Formulation& f);
 
+/// fused: inside the products of G (FusedStabilization: one value per bond, the fastest;
+///        needs symmetric families, i.e. a horizon radius);
+/// assembled: S0 stored once (about 75 bytes per bond in 3-D);
+/// matrix_free: two extra bond passes (16 bytes per bond, the slowest);
+/// automatic: fused when the families are symmetric, assembled otherwise.
+enum class StabilizationStorage { automatic, fused, assembled, matrix_free };
+/// Parses "auto", "fused", "assembled", "matrix_free"; false if unknown.
+bool parse_stabilization_storage(const std::string& name, StabilizationStorage& s);
+
 /// Options of the correspondence model.
 struct CorrespondenceOptions {
   Influence influence = Influence::inverse_square;
   double stabilization = 0.5;  ///< C_hg (dimensionless); 0 assembles no S
   Formulation formulation = Formulation::classical;
-  /// true: apply S matrix-free (16 bytes per bond, about 25% slower per force evaluation);
-  /// false: assemble S0 once (about 75 bytes per bond in 3-D, faster). Same answer.
-  bool stabilization_matrix_free = false;
+  /// How the explicit force applies S (the answers agree to rounding):
+  StabilizationStorage stabilization_storage = StabilizationStorage::automatic;
   /// Storage of G's weights (the stabilization and tangents use them as stored).
   WeightPrecision weight_precision = WeightPrecision::float64;
 };
@@ -70,7 +79,9 @@ class CorrespondenceModel : public Model {
   const GradientOperator& G() const { return G_; }
   /// The stabilization operator (matrix-free), or nullptr when C_hg = 0.
   const Stabilization* stabilization() const { return S_ ? &*S_ : nullptr; }
-  /// The stored S0, or nullptr (C_hg = 0, or a matrix-free stabilization).
+  /// True when S is applied inside the products of G (FusedStabilization).
+  bool fused_stabilization() const { return F_.has_value(); }
+  /// The stored S0, or nullptr (C_hg = 0, or a fused or matrix-free stabilization).
   const ScalarCsr* assembled_stabilization() const { return S_assembled_ ? &*S_assembled_ : nullptr; }
   const LinearElastic& material() const { return material_; }
   const std::vector<double>& volume() const { return volume_; }
@@ -86,9 +97,11 @@ class CorrespondenceModel : public Model {
   std::vector<double> volume_;
   GradientOperator G_;
   std::optional<Stabilization> S_;
-  std::optional<ScalarCsr> S_assembled_;  // S0 stored, unless matrix-free
+  std::optional<ScalarCsr> S_assembled_;  // S0 stored (storage assembled)
+  std::optional<FusedStabilization> F_;   // S inside G's products (storage fused)
   std::vector<double> H_, Q_, P_;  // workspaces: grad u, V . P, and P for strong rows
-  std::vector<double> B_, r_, Su_;  // workspaces of the stabilization: B, r and S u
+  std::vector<double> B_, r_, Su_;  // workspaces of the stabilization: B (or T), r, S u
+  std::vector<double> lap_;          // fused: the weighted Laplacian of u
 };
 
 }  // namespace perinom

@@ -50,6 +50,15 @@ class GradientOperator {
   void divergence(const double* q, int nc, double* out,
                   const std::vector<ParticleId>* rows = nullptr) const;
 
+  /// Attaches one scalar c_ij per bond (row order, stored in the operator's precision), for
+  /// apply_with_laplacian. Replaces any earlier ones.
+  void set_bond_scalars(const std::vector<double>& c);
+  bool has_bond_scalars() const { return !c_.empty() || !c32_.empty(); }
+  /// apply(f, d, out) and, in the same pass over the bonds, lap[i*d + a] =
+  /// sum_j c_ij (f_j - f_i)[a]: the graph Laplacian weighted by the bond scalars (one
+  /// more multiply-add and one more stored value per bond). Needs set_bond_scalars.
+  void apply_with_laplacian(const double* f, double* out, double* lap) const;
+
   /// Bytes held by the operator (both orientations).
   std::size_t memory_bytes() const;
 
@@ -81,6 +90,8 @@ class GradientOperator {
   std::vector<ParticleId> t_cols_;
   std::vector<double> t_w_;
   std::vector<float> w32_, t_w32_;  // the weights, when stored in single precision
+  std::vector<double> c_;           // bond scalars (set_bond_scalars), double precision
+  std::vector<float> c32_;          // or single
 };
 
 }  // namespace perinom

@@ -27,7 +27,7 @@ struct ModelSpec {
   std::string type = "correspondence";
   std::string formulation = "improved";
   double stabilization = 0.5;  ///< C_hg
-  std::string stabilization_storage = "assembled";  ///< assembled | matrix_free
+  std::string stabilization_storage = "auto";  ///< auto | fused | assembled | matrix_free
   std::string weight_precision = "double";          ///< double | single (G's stored weights)
 };
 
