@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "perinom/core/error.hpp"
+#include "perinom/core/parallel.hpp"
 #include "perinom/operators/bond_weights.hpp"
 #include "perinom/operators/stabilization.hpp"
 #include "perinom/operators/tangent_rows.hpp"
@@ -122,9 +123,10 @@ double CorrespondenceModel::energy(const double* u) {
   const int d2 = dim_ * dim_;
   const std::size_t n = particles();
   G_.apply(u, dim_, H_.data());
-  double w = 0.0;
-#pragma omp parallel for reduction(+ : w) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) w += volume_[i] * material_.energy(H_.data() + i * d2);
+  // Summed in fixed blocks: the same bits for any thread count.
+  double w = parallel_sums<1>(n, [&](std::size_t i, double* acc) {
+    acc[0] += volume_[i] * material_.energy(H_.data() + i * d2);
+  })[0];
   if (S_) {
     // W_s = 1/2 u . S u, with S u = G^T(-B) + the direct bond term, or the stored S0.
     if (S_assembled_) {

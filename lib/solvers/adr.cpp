@@ -13,9 +13,12 @@ void solve_adr_steps(Model& model, const Loading& loading, const AdrOptions& opt
                              const Observer& observe, SolveReport& rep) {
   const std::size_t n = model.dofs();
   u.resize(n, 0.0);
-  std::vector<double> lambda = model.stiffness_row_sums();
-  for (auto& l : lambda) l = 0.25 * l;  // dt = 1
+  // The diagonal mass lambda = 1/4 sum_j |K_ij| (dt = 1), kept as its inverse.
+  std::vector<double> inv_lambda = model.stiffness_row_sums();
+  for (auto& l : inv_lambda) l = 4.0 / l;
   std::vector<double> v(n), f(n), f_old(n), fint(n), last_good(u);
+  const double force_norm = loading.force.empty() ? 0.0 : norm(loading.force);
+  const double* fext = loading.force.empty() ? nullptr : loading.force.data();
   rep.history.columns = {"iteration", "load_factor", "residual", "displacement_change",
                          "damping"};
   rep.history.reserve(opt.max_iterations / std::max<std::int64_t>(opt.history_every, 1) + 1);
@@ -29,7 +32,7 @@ void solve_adr_steps(Model& model, const Loading& loading, const AdrOptions& opt
     model.internal_force(u.data(), fint.data());
     double reaction2 = 0.0;
     for (const auto dof : loading.fixed) reaction2 += fint[dof] * fint[dof];
-    for (std::size_t k = 0; k < n; ++k) f[k] = s * (loading.force.empty() ? 0.0 : loading.force[k]) - fint[k];
+    parallel_for(n, [&](std::size_t k) { f[k] = (fext ? s * fext[k] : 0.0) - fint[k]; });
     loading.zero_fixed(f.data());
     const double fnorm = norm(f);
     if (!std::isfinite(fnorm)) {
@@ -37,8 +40,7 @@ void solve_adr_steps(Model& model, const Loading& loading, const AdrOptions& opt
       throw SolveError("ADR: the internal force became NaN or Inf at iteration " +
                        std::to_string(rep.iterations) + " (last finite state kept)");
     }
-    const double load = std::max(s * (loading.force.empty() ? 0.0 : norm(loading.force)),
-                                 std::sqrt(reaction2));
+    const double load = std::max(s * force_norm, std::sqrt(reaction2));
     return load > 0.0 ? fnorm / load : fnorm;
   };
 
@@ -58,26 +60,24 @@ void solve_adr_steps(Model& model, const Loading& loading, const AdrOptions& opt
         break;
       }
       if (first) {
-        for (std::size_t k = 0; k < n; ++k) v[k] = 0.5 * f[k] / lambda[k];
+        parallel_for(n, [&](std::size_t k) { v[k] = 0.5 * f[k] * inv_lambda[k]; });
       } else {
         // Damping from the local diagonal stiffness (Rayleigh quotient over u).
-        double num = 0.0, den = 0.0;
-        for (std::size_t k = 0; k < n; ++k) {
-          den += u[k] * u[k];
-          if (v[k] != 0.0) num += u[k] * u[k] * (-(f[k] - f_old[k]) / (lambda[k] * v[k]));
-        }
+        const auto [num, den] = parallel_sums<2>(n, [&](std::size_t k, double* acc) {
+          acc[1] += u[k] * u[k];
+          if (v[k] != 0.0) acc[0] += u[k] * u[k] * (-(f[k] - f_old[k]) * inv_lambda[k] / v[k]);
+        });
         c = (num > 0.0 && den > 0.0) ? 2.0 * std::sqrt(num / den) : 0.0;
         c = std::min(c, 1.999);
-        for (std::size_t k = 0; k < n; ++k)
-          v[k] = ((2.0 - c) * v[k] + 2.0 * f[k] / lambda[k]) / (2.0 + c);
+        const double keep = (2.0 - c) / (2.0 + c), push = 2.0 / (2.0 + c);
+        parallel_for(n, [&](std::size_t k) { v[k] = keep * v[k] + push * f[k] * inv_lambda[k]; });
       }
       first = false;
       loading.zero_fixed(v.data());
-      double du2 = 0.0;
-      for (std::size_t k = 0; k < n; ++k) {
+      const double du2 = parallel_sums<1>(n, [&](std::size_t k, double* acc) {
         u[k] += v[k];
-        du2 += v[k] * v[k];
-      }
+        acc[0] += v[k] * v[k];
+      })[0];
       if (loading.coupled_constraints()) loading.impose(s, u.data());
       const double un = norm(u);
       du = un > 0.0 ? std::sqrt(du2) / un : std::sqrt(du2);

@@ -26,7 +26,9 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   v.resize(n, 0.0);
   rep.stable_time_step = stable_time_step(model);
   const double dt = opt.dt > 0.0 ? opt.dt : opt.safety * rep.stable_time_step;
-  const auto mass = model.lumped_mass();
+  auto inv_mass = model.lumped_mass();
+  for (auto& m : inv_mass) m = 1.0 / m;
+  const double* fext = loading.force.empty() ? nullptr : loading.force.data();
   std::vector<double> a(n), fint(n), u_old(n), last_good(u);
   rep.history.columns = {"step", "time", "kinetic_energy", "strain_energy", "external_work",
                          "total_energy"};
@@ -36,18 +38,21 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   auto accelerate = [&](double t) {
     model.internal_force(u.data(), fint.data());
     const double s = factor(t);
-    for (std::size_t k = 0; k < n; ++k)
-      a[k] = ((loading.force.empty() ? 0.0 : s * loading.force[k]) - fint[k]) / mass[k];
+    const double a2 = parallel_sums<1>(n, [&](std::size_t k, double* acc) {
+      a[k] = ((fext ? s * fext[k] : 0.0) - fint[k]) * inv_mass[k];
+      acc[0] += a[k] * a[k];
+    })[0];
     loading.zero_fixed(a.data());
-    if (!std::isfinite(norm(a))) {
+    if (!std::isfinite(a2)) {
       u = last_good;
       throw SolveError("Verlet: the internal force became NaN or Inf at step " +
                        std::to_string(rep.iterations) + " (last finite state kept)");
     }
   };
   auto record = [&](std::int64_t step, double t) {
-    double kin = 0.0;
-    for (std::size_t k = 0; k < n; ++k) kin += 0.5 * mass[k] * v[k] * v[k];
+    const double kin = parallel_sums<1>(n, [&](std::size_t k, double* acc) {
+      acc[0] += 0.5 * v[k] * v[k] / inv_mass[k];
+    })[0];
     const double strain = model.energy(u.data());
     rep.history.add({double(step), t, kin, strain, work, kin + strain - work});
   };
@@ -58,18 +63,18 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   ProgressSample sample;
   sample.limit = opt.steps;
   for (std::int64_t step = 1; step <= opt.steps; ++step) {
-    for (std::size_t k = 0; k < n; ++k) {
+    parallel_for(n, [&](std::size_t k) {
       v[k] += 0.5 * dt * a[k];
       u_old[k] = u[k];
       u[k] += dt * v[k];
-    }
+    });
     t += dt;
     loading.impose(factor(t), u.data());
     const double s_mid = 0.5 * (factor(t) + factor(t - dt));
-    if (!loading.force.empty())
-      for (std::size_t k = 0; k < n; ++k) work += s_mid * loading.force[k] * (u[k] - u_old[k]);
+    if (fext)
+      work += s_mid * parallel_sums<1>(n, [&](std::size_t k, double* acc) { acc[0] += fext[k] * (u[k] - u_old[k]); })[0];
     accelerate(t);
-    for (std::size_t k = 0; k < n; ++k) v[k] += 0.5 * dt * a[k];
+    parallel_for(n, [&](std::size_t k) { v[k] += 0.5 * dt * a[k]; });
     loading.zero_fixed(v.data());
     rep.iterations = step;
     rep.end_time = t;

@@ -3,12 +3,13 @@
 #include <cmath>
 #include <vector>
 
+#include "perinom/core/parallel.hpp"
+
 namespace perinom {
 
 inline double norm(const std::vector<double>& v) {
-  double s = 0.0;
-  for (const double x : v) s += x * x;
-  return std::sqrt(s);
+  const double* p = v.data();
+  return std::sqrt(parallel_sums<1>(v.size(), [p](std::size_t k, double* s) { s[0] += p[k] * p[k]; })[0]);
 }
 
 }  // namespace perinom

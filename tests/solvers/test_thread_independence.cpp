@@ -1,0 +1,58 @@
+// The explicit solvers give the same bits on 1 and 2 threads: the products are gathers (each
+// row summed by one thread in a fixed order) and the solvers' sums run over fixed blocks.
+#include <catch2/catch.hpp>
+#include <omp.h>
+
+#include <cstring>
+
+#include "perinom/scene/problem.hpp"
+#include "perinom/solvers/adr.hpp"
+#include "perinom/solvers/verlet.hpp"
+
+using namespace perinom;
+
+namespace {
+
+struct Run {
+  std::vector<double> u, v;
+  SolveReport adr, verlet;
+};
+
+Run solve_with(int threads, const Problem& p) {
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(threads);
+  Run r;
+  AdrOptions adr;
+  adr.tolerance = 1e-6;
+  adr.max_iterations = 400;
+  r.adr = solve_adr(*p.model, p.loading, adr, r.u);
+  std::vector<double> u;
+  VerletOptions verlet;
+  verlet.steps = 200;
+  r.verlet = solve_verlet(*p.model, p.loading, verlet, u, r.v);
+  omp_set_num_threads(before);
+  return r;
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+}  // namespace
+
+TEST_CASE("ADR and Verlet answers are bitwise independent of the thread count", "[solvers]") {
+  for (const char* storage : {"fused", "assembled", "matrix_free"}) {
+    const Scene scene = read_scene(PERINOM_SOURCE_DIR "/examples/uniaxial_compression.yaml",
+                                   {"discretization.dx=0.004", std::string("model.stabilization_storage=") + storage});
+    Problem p = build_problem(scene);
+    const Run one = solve_with(1, p), two = solve_with(2, p);
+    INFO("stabilization storage " << storage);
+    REQUIRE(one.adr.iterations > 10);
+    CHECK(one.adr.iterations == two.adr.iterations);
+    CHECK(same_bits(one.u, two.u));
+    CHECK(same_bits(one.v, two.v));
+    REQUIRE(one.verlet.history.rows() == two.verlet.history.rows());
+    for (std::size_t r = 0; r < one.verlet.history.rows(); ++r)
+      CHECK(one.verlet.history.at(r, 5) == two.verlet.history.at(r, 5));  // total energy
+  }
+}
