@@ -112,9 +112,8 @@ void CorrespondenceModel::internal_force(const double* u, double* f) {
   }
   if (matrix_free) S_->add_direct(u, H_.data(), r_.data(), f);
   if (fused) {
-    const std::size_t m = lap_.size();
-#pragma omp parallel for schedule(static)
-    for (std::size_t k = 0; k < m; ++k) f[k] -= lap_[k];
+    const double* lap = lap_.data();
+    parallel_for(lap_.size(), [f, lap](std::size_t k) { f[k] -= lap[k]; });
   }
   if (S_assembled_) S_assembled_->apply_add(u, dim_, f);
 }
