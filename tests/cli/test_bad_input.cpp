@@ -361,3 +361,20 @@ TEST_CASE("a non-numeric --stabilization for bench is bad input", "[cli]") {
   require_one_clear_error(perinom(dir, "bench force --dimension 2 --n 4 --stabilization abc"),
                           {"--stabilization"});
 }
+
+TEST_CASE("an unknown stabilization storage is named", "[cli]") {
+  const std::string s = with(tiny_scene, "solver:\n", "model:\n  stabilization_storage: packed\nsolver:\n");
+  require_rejected(s, {at_line(s, "stabilization_storage:", "model.stabilization_storage: must be auto, fused")});
+}
+
+TEST_CASE("the fused stabilization with a neighbour count is bad input", "[cli]") {
+  // k nearest neighbours make families that are not symmetric: fused cannot apply.
+  const std::string s = with(with(tiny_scene, "horizon: {ratio: 3.015}", "horizon: {neighbors: 12}"), "solver:\n",
+                             "model:\n  stabilization_storage: fused\nsolver:\n");
+  require_rejected(s, {"model.stabilization_storage: fused needs symmetric families"});
+}
+
+TEST_CASE("an unknown --storage for bench is bad input", "[cli]") {
+  ScratchDir dir;
+  require_one_clear_error(perinom(dir, "bench force --dimension 2 --n 4 --storage packed"), {"--storage"});
+}
