@@ -157,6 +157,8 @@ int run(const Options& opt) {
   const Scene scene = read_scene(opt.positional[0], opt.overrides);
   const std::string dir = opt.out.empty() ? "out/" + scene.name : opt.out;
   prepare_output(dir);
+  std::printf("perinom: %s: building particles, families and operators\n", scene.name.c_str());
+  std::fflush(stdout);
   Problem p = build_problem(scene, &timer);
   std::printf("perinom: %s: %zu particles, %zu bonds, %d threads, solver %s\n", scene.name.c_str(),
               p.cloud.size(), p.bonds, omp_get_max_threads(), scene.solver.type.c_str());

@@ -55,4 +55,9 @@ void TerminalProgress::finish() {
   printed_ = false;
 }
 
+void TerminalProgress::phase(const char* what) {
+  std::printf("perinom: %s\n", what);
+  std::fflush(stdout);
+}
+
 }  // namespace perinom::cli

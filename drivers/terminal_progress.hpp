@@ -12,6 +12,7 @@ class TerminalProgress : public Progress {
   explicit TerminalProgress(const char* label);
   void update(const ProgressSample& s) override;
   void finish() override;
+  void phase(const char* what) override;
 
  private:
   const char* label_;

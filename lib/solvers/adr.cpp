@@ -14,6 +14,7 @@ void solve_adr_steps(Model& model, const Loading& loading, const AdrOptions& opt
   const std::size_t n = model.dofs();
   u.resize(n, 0.0);
   // The diagonal mass lambda = 1/4 sum_j |K_ij| (dt = 1), kept as its inverse.
+  if (progress) progress->phase("summing the stiffness rows for the ADR mass");
   std::vector<double> inv_lambda = model.stiffness_row_sums();
   for (auto& l : inv_lambda) l = 4.0 / l;
   std::vector<double> v(n), f(n), f_old(n), fint(n), last_good(u);

@@ -24,6 +24,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   const std::size_t n = model.dofs();
   u.resize(n, 0.0);
   v.resize(n, 0.0);
+  if (progress) progress->phase("summing the stiffness rows for the stable time step");
   rep.stable_time_step = stable_time_step(model);
   const double dt = opt.dt > 0.0 ? opt.dt : opt.safety * rep.stable_time_step;
   auto inv_mass = model.lumped_mass();

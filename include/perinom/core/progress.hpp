@@ -19,6 +19,8 @@ class Progress {
  public:
   virtual ~Progress() = default;
   virtual void update(const ProgressSample& s) = 0;
+  /// A step before the iterations that may take long on large scenes (once per call).
+  virtual void phase(const char* /*what*/) {}
   virtual void finish() {}
 };
 
