@@ -104,6 +104,51 @@ DruckerPrager::Return DruckerPrager::update(const State& n, const double* deps, 
   return Return::smooth;
 }
 
+DruckerPrager::Return DruckerPrager::tangent(const State& n, const double* deps, State& out, double* D) const {
+  const Return r = update(n, deps, out);
+  const double K = bulk(), G = shear(), lambda = K - 2.0 * G / 3.0;
+  auto id = [](int a, int b) { return a == b ? 1.0 : 0.0; };
+  if (r == Return::apex) {
+    std::fill(D, D + 81, 0.0);
+    return r;
+  }
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      for (int c = 0; c < 3; ++c)
+        for (int e = 0; e < 3; ++e) D[((a * 3 + b) * 3 + c) * 3 + e] = 2.0 * G * id(a, c) * id(b, e) + lambda * id(a, b) * id(c, e);
+  if (r == Return::elastic) return r;
+  // Smooth return, compression positive (the signs cancel in d sigma / d eps). With
+  // nhat = s_tr / 2 q_tr: d q_tr = 2G nhat : de, d I1_tr = 3K tr de, and F(dl; q_tr, I1_tr) = 0
+  // gives d dl = (2G nhat - 3K m A I) : de / (-dF/d dl).
+  double trial[9], sc[9];
+  elastic_trial(n.sigma, deps, K, G, trial);
+  for (int k = 0; k < 9; ++k) sc[k] = -trial[k];
+  const Invariants v = invariants(sc);
+  const double a_ = A(), b_ = B(), dl = 2.0 * (out.xi - n.xi), x = out.xi, mm = m(x);
+  const double dm = 0.5 * h * (1.0 - m0) / ((1.0 + h * x) * (1.0 + h * x));  // dm / d dl
+  const double I1 = v.I1 + 9.0 * K * mm * d0 * a_ * dl;
+  const double slope = -G - dm * (a_ * I1 + b_) - mm * a_ * 9.0 * K * d0 * a_ * (mm + dl * dm);
+  double ddl[9], dq[9];
+  for (int k = 0; k < 9; ++k) {
+    dq[k] = 2.0 * G * v.s[k] / (2.0 * v.q);
+    ddl[k] = (dq[k] - (k % 4 == 0 ? 3.0 * K * mm * a_ : 0.0)) / -slope;
+  }
+  // s = s_tr (1 - G dl / q_tr): ds = (1 - G dl/q) ds_tr + s_tr (G dl dq / q^2 - G d dl / q);
+  // I1 = I1_tr + 9 K m d0 A dl: dI1 = 3K tr de + 9 K d0 A (m + dl dm) d dl.
+  const double shrink = 1.0 - G * dl / v.q, grow = 9.0 * K * d0 * a_ * (mm + dl * dm);
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      for (int c = 0; c < 3; ++c)
+        for (int e = 0; e < 3; ++e) {
+          const int ce = c * 3 + e;
+          const double ds_tr = 2.0 * G * (id(a, c) * id(b, e) - id(a, b) * id(c, e) / 3.0);
+          double d = shrink * ds_tr + v.s[a * 3 + b] * (G * dl * dq[ce] / (v.q * v.q) - G * ddl[ce] / v.q);
+          d += id(a, b) * (K * id(c, e) + grow * ddl[ce] / 3.0);
+          D[((a * 3 + b) * 3 + c) * 3 + e] = d;
+        }
+  return r;
+}
+
 void DruckerPrager::update_substepped(const State& n, const double* deps, int substeps, State& out) const {
   const double K = bulk(), G = shear(), a = A(), b = B();
   double d[9], trial[9];

@@ -213,3 +213,45 @@ TEST_CASE("Drucker-Prager: the seed's biaxial test 2 at one material point", "[m
   CHECK(drive.state.sigma[0] == Approx(-600e3).epsilon(1e-6));
   CHECK(vm == Approx(232.1e3).epsilon(3e-3));
 }
+
+TEST_CASE("Drucker-Prager: the consistent tangent is the derivative of the update", "[materials]") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int counted[3] = {0, 0, 0};
+  for (const auto& dp : {soil(), soil(25.0), soil(50.0, 1.0), soil(25.0, 0.5)})
+    for (int trial = 0; trial < 60; ++trial) {
+      DruckerPrager::State n = confined(600e3);
+      n.xi = 0.01 * (u(rng) + 1.0);
+      double deps[9];
+      const double size = trial % 3 == 0 ? 1e-4 : 0.01;
+      for (int a = 0; a < 3; ++a)
+        for (int b = a; b < 3; ++b) deps[a * 3 + b] = deps[b * 3 + a] = size * u(rng);
+      if (trial % 10 == 9) {  // pulled apart from a stress-free state: the apex
+        n = DruckerPrager::State{};
+        for (int a = 0; a < 3; ++a) deps[a * 4] += 0.03;
+      }
+      DruckerPrager::State out, plus, minus;
+      double D[81];
+      const auto r = dp.tangent(n, deps, out, D);
+      ++counted[int(r)];
+      const double h = 1e-7 * size, scale = 2.0 * dp.shear() + dp.bulk();
+      for (int ce = 0; ce < 9; ++ce) {
+        double dp_[9], dm_[9];
+        std::copy(deps, deps + 9, dp_);
+        std::copy(deps, deps + 9, dm_);
+        dp_[ce] += h;
+        dm_[ce] -= h;
+        // The perturbation must not switch the branch (elastic, smooth, apex).
+        if (dp.update(n, dp_, plus) != r || dp.update(n, dm_, minus) != r) continue;
+        for (int ab = 0; ab < 9; ++ab) {
+          const double fd = (plus.sigma[ab] - minus.sigma[ab]) / (2 * h);
+          INFO("return " << int(r) << " entry " << ab << "," << ce);
+          CHECK(D[ab * 9 + ce] == Approx(fd).margin(1e-6 * scale));
+        }
+      }
+    }
+  INFO("elastic " << counted[0] << ", smooth " << counted[1] << ", apex " << counted[2]);
+  CHECK(counted[0] > 10);
+  CHECK(counted[1] > 50);
+  CHECK(counted[2] > 5);
+}

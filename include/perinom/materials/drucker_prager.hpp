@@ -2,8 +2,8 @@
 /// @file Drucker-Prager elastoplasticity with hyperbolic hardening (THEORY sec. 9), small
 /// strain, integrated by the closest point projection. Knows nothing of particles.
 ///
-/// PARTIAL (issue 5): the law and its return map are here and verified at the material
-/// point; the consistent tangent, the material-point command, the LBC solver and the scene
+/// PARTIAL (issue 5): the law, its return map and its consistent tangent are here and
+/// verified at the material point; the material-point command, the LBC solver and the scene
 /// keys are not yet written.
 ///
 /// The interface takes and returns tension-positive 3 x 3 tensors (row-major), like
@@ -45,6 +45,11 @@ struct DruckerPrager {
   /// point projection in invariant space (one scalar equation for the plastic multiplier,
   /// the seed's cubic once m is cleared, solved by safeguarded Newton) or the apex return.
   Return update(const State& n, const double* deps, State& out) const;
+
+  /// The consistent (algorithmic) tangent of `update`: D[((a*3 + b)*3 + c)*3 + e] =
+  /// d sigma_ab / d deps_ce of the same increment (C when elastic, 0 at the apex), and the
+  /// updated state in `out`. Not symmetric when d0 != 1 (non-associated flow).
+  Return tangent(const State& n, const double* deps, State& out, double* D) const;
 
   /// The reference the return map is checked against: the rate equations integrated
   /// explicitly in `substeps` equal sub-increments (continuum elastoplastic operator,
