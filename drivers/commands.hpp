@@ -14,10 +14,13 @@ struct Options {
   double stabilization = 0.5;
   std::string storage = "auto";  ///< the stabilization storage (bench)
   bool single_precision = false;  ///< G's weights stored as float
+  int test = 2;                   ///< material-point: seed 000 Table 2 test
+  int substeps = 1000;            ///< material-point: sub-steps of the reference
 };
 
 int run(const Options& opt);
 int check(const Options& opt);
 int bench(const Options& opt);
+int material_point(const Options& opt);
 
 }  // namespace perinom::cli

@@ -2,6 +2,7 @@
 //   perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N]
 //   perinom check SCENE [--set dotted.key=value]...
 //   perinom bench force --dimension 3 --n N [--threads T]
+//   perinom material-point [--test 1..7] [--substeps S] [--out DIR]
 // Exit codes: 0 success, 1 the solve did not converge, 2 bad input, 3 the solve failed.
 #include <omp.h>
 
@@ -20,7 +21,8 @@ void usage() {
                "usage:\n"
                "  perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N]\n"
                "  perinom check SCENE [--set dotted.key=value]...\n"
-               "  perinom bench force --dimension 2|3 --n N [--threads T] [--stabilization C] [--storage auto|fused|assembled|matrix_free] [--single]\n");
+               "  perinom bench force --dimension 2|3 --n N [--threads T] [--stabilization C] [--storage auto|fused|assembled|matrix_free] [--single]\n"
+               "  perinom material-point [--test 1..7] [--substeps S] [--out DIR]\n");
 }
 
 }  // namespace
@@ -63,6 +65,8 @@ int main(int argc, char** argv) {
         }
       }
       else if (a == "--storage") opt.storage = value();
+      else if (a == "--test") opt.test = static_cast<int>(integer());
+      else if (a == "--substeps") opt.substeps = static_cast<int>(integer());
       else if (a == "--single") opt.single_precision = true;
       else if (a.rfind("--", 0) == 0) throw InputError("unknown option " + a);
       else opt.positional.push_back(a);
@@ -72,6 +76,7 @@ int main(int argc, char** argv) {
     if (opt.command == "run") return cli::run(opt);
     if (opt.command == "check") return cli::check(opt);
     if (opt.command == "bench") return cli::bench(opt);
+    if (opt.command == "material-point") return cli::material_point(opt);
     usage();
     throw InputError("unknown command '" + opt.command + "'");
   } catch (const InputError& e) {

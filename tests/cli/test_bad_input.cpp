@@ -378,3 +378,8 @@ TEST_CASE("an unknown --storage for bench is bad input", "[cli]") {
   ScratchDir dir;
   require_one_clear_error(perinom(dir, "bench force --dimension 2 --n 4 --storage packed"), {"--storage"});
 }
+
+TEST_CASE("material-point: a test outside Table 2 is bad input", "[cli]") {
+  ScratchDir dir;
+  require_one_clear_error(perinom(dir, "material-point --test 9"), {"--test"});
+}

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "perinom/materials/drucker_prager.hpp"
+#include "perinom/materials/material_point.hpp"
 
 using namespace perinom;
 
@@ -143,51 +144,6 @@ TEST_CASE("Drucker-Prager: the return map converges to the sub-stepped rate equa
 
 namespace {
 
-// Mixed control at one point in plane strain (eps_zz = 0, no shear): the increment of
-// eps_xx (and of eps_yy where its stress is held) is found by Newton with a finite-difference
-// Jacobian of the update, so that the held stresses take their targets.
-struct MixedDriver {
-  const DruckerPrager& dp;
-  DruckerPrager::State state;
-  double eps[2] = {0.0, 0.0};
-
-  // One increment: stress targets sxx (and syy when hold_y), or strain increment dyy.
-  void step(double sxx, bool hold_y, double target_y) {
-    double d[2] = {0.0, hold_y ? 0.0 : target_y};
-    const int unknowns = hold_y ? 2 : 1;
-    DruckerPrager::State out;
-    auto residual = [&](const double* dd, double* r) {
-      const double deps[9] = {dd[0], 0, 0, 0, dd[1], 0, 0, 0, 0};
-      dp.update(state, deps, out);
-      r[0] = out.sigma[0] - sxx;
-      r[1] = hold_y ? out.sigma[4] - target_y : 0.0;
-    };
-    for (int it = 0; it < 50; ++it) {
-      double r[2], J[2][2];
-      residual(d, r);
-      if (std::abs(r[0]) + std::abs(r[1]) < 1e-6) break;
-      for (int c = 0; c < unknowns; ++c) {
-        double dd[2] = {d[0], d[1]}, rp[2];
-        dd[c] += 1e-9;
-        residual(dd, rp);
-        for (int k = 0; k < unknowns; ++k) J[k][c] = (rp[k] - r[k]) / 1e-9;
-      }
-      if (unknowns == 1) {
-        d[0] -= r[0] / J[0][0];
-      } else {
-        const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-        d[0] -= (J[1][1] * r[0] - J[0][1] * r[1]) / det;
-        d[1] -= (-J[1][0] * r[0] + J[0][0] * r[1]) / det;
-      }
-    }
-    const double deps[9] = {d[0], 0, 0, 0, d[1], 0, 0, 0, 0};
-    dp.update(state, deps, out);
-    state = out;
-    eps[0] += d[0];
-    eps[1] += d[1];
-  }
-};
-
 double von_mises3(const double* s) {
   const double a = s[0] - s[4], b = s[4] - s[8], c = s[8] - s[0];
   return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * (s[1] * s[1] + s[5] * s[5] + s[2] * s[2]));
@@ -200,18 +156,26 @@ TEST_CASE("Drucker-Prager: the seed's biaxial test 2 at one material point", "[m
   // the vertical strain ramped by 0.05 in 100 steps at constant sigma_xx, plane strain.
   // THEORY sec. 9: the seed's final von Mises stress is 232.1 kPa.
   const DruckerPrager dp = soil();
-  MixedDriver drive{dp, {}, {}};
-  for (int k = 1; k <= 100; ++k) drive.step(-600e3 * k / 100.0, true, -600e3 * k / 100.0);
-  CHECK(drive.state.sigma[0] == Approx(-600e3).epsilon(1e-6));
-  CHECK(drive.state.sigma[4] == Approx(-600e3).epsilon(1e-6));
+  const auto path = drive_biaxial(dp, BiaxialProtocol{});
+  REQUIRE(path.size() == 201);
+  const auto& consolidated = path[100].state;
+  CHECK(consolidated.sigma[0] == Approx(-600e3).epsilon(1e-6));
+  CHECK(consolidated.sigma[4] == Approx(-600e3).epsilon(1e-6));
   // With m0 = 0.2 the consolidation already yields: elastic sigma_zz would be nu (sxx + syy)
   // = -300 kPa, q = 173 kPa, beyond m0 (A I1 + B) = 96 kPa.
-  CHECK(drive.state.xi > 0.0);
-  for (int k = 1; k <= 100; ++k) drive.step(-600e3, false, -0.05 / 100.0);
-  const double vm = von_mises3(drive.state.sigma);
-  WARN("test 2: final von Mises " << vm / 1e3 << " kPa (seed 232.1), eq. plastic strain " << drive.state.xi);
-  CHECK(drive.state.sigma[0] == Approx(-600e3).epsilon(1e-6));
+  CHECK(consolidated.xi > 0.0);
+  const auto& end = path.back();
+  CHECK(end.eps_yy - path[100].eps_yy == Approx(-0.05).epsilon(1e-12));
+  CHECK(end.state.sigma[0] == Approx(-600e3).epsilon(1e-6));
+  const double vm = von_mises3(end.state.sigma);
   CHECK(vm == Approx(232.1e3).epsilon(3e-3));
+  // The same protocol by the sub-stepped rate equations (1000 sub-steps per step).
+  const auto reference = drive_biaxial(dp, BiaxialProtocol{}, 1000);
+  const double vm_ref = von_mises3(reference.back().state.sigma);
+  WARN("test 2: final von Mises " << vm / 1e3 << " kPa (seed 232.1, sub-stepped " << vm_ref / 1e3
+                                  << "), eq. plastic strain " << end.state.xi << " (" << reference.back().state.xi << ")");
+  CHECK(vm == Approx(vm_ref).epsilon(2e-3));
+  CHECK(end.state.xi == Approx(reference.back().state.xi).epsilon(1e-2));
 }
 
 TEST_CASE("Drucker-Prager: the consistent tangent is the derivative of the update", "[materials]") {
@@ -254,4 +218,21 @@ TEST_CASE("Drucker-Prager: the consistent tangent is the derivative of the updat
   CHECK(counted[0] > 10);
   CHECK(counted[1] > 50);
   CHECK(counted[2] > 5);
+}
+
+TEST_CASE("Drucker-Prager: the seed's expected trends across the biaxial tests", "[materials]") {
+  // Seed 000 sec. 5.3.1: larger h gives less plastic strain; the associated test 7 ends near
+  // test 2's stress with more plastic strain; higher confinement carries more deviatoric stress.
+  auto end = [](const DruckerPrager& dp, double confining) {
+    BiaxialProtocol p;
+    p.confining = confining;
+    return drive_biaxial(dp, p).back().state;
+  };
+  const auto t2 = end(soil(), 600e3), t5 = end(soil(25.0), 600e3), t6 = end(soil(50.0), 600e3),
+             t7 = end(soil(0.0, 1.0), 600e3), t4 = end(soil(), 1000e3);
+  CHECK(t5.xi < t2.xi);
+  CHECK(t6.xi < t5.xi);
+  CHECK(t7.xi > t2.xi);
+  CHECK(von_mises3(t7.sigma) == Approx(von_mises3(t2.sigma)).epsilon(0.02));
+  CHECK(von_mises3(t4.sigma) > von_mises3(t2.sigma));
 }
