@@ -1,7 +1,8 @@
 #include "perinom/materials/material_point.hpp"
 
 #include <cmath>
-#include <stdexcept>
+
+#include "perinom/core/error.hpp"
 
 namespace perinom {
 namespace {
@@ -33,14 +34,14 @@ void mixed_step(const DruckerPrager& dp, int substeps, double sxx, bool hold_y, 
       for (int k = 0; k < unknowns; ++k) J[k][c] = (rp[k] - r[k]) / eps;
     }
     const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-    if (det == 0.0) throw std::runtime_error("material point: the mixed control lost its stiffness");
+    if (det == 0.0) throw SolveError("material point: the mixed control lost its stiffness");
     const double s0 = (J[1][1] * r[0] - J[0][1] * r[1]) / det, s1 = (J[0][0] * r[1] - J[1][0] * r[0]) / det;
     d[0] -= s0;
     if (hold_y) d[1] -= s1;
   }
   residual(d, r);
   if (!(std::abs(r[0]) + std::abs(r[1]) < 1e-3))
-    throw std::runtime_error("material point: the held stresses were not reached (the point cannot carry them)");
+    throw SolveError("material point: the held stresses were not reached (the point cannot carry them)");
   rec.state = out;
   rec.eps_xx += d[0];
   rec.eps_yy += d[1];

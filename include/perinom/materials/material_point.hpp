@@ -28,6 +28,7 @@ struct MaterialPointRecord {
 /// (`update_substepped`), the independent reference. The lateral (and during consolidation
 /// the vertical) strain increments are found by Newton with a finite-difference Jacobian
 /// of the update, to 1e-6 Pa. Returns one record per step, the initial state first.
+/// Throws SolveError when a held stress cannot be reached (the point cannot carry it).
 std::vector<MaterialPointRecord> drive_biaxial(const DruckerPrager& dp, const BiaxialProtocol& protocol,
                                                int substeps = 0);
 
