@@ -24,50 +24,6 @@ inline v4 load3(const double* p) { return v4{p[0], p[1], p[2], 0.0}; }
 template <class W>
 inline v4 load3(const W* p) { return v4{double(p[0]), double(p[1]), double(p[2]), 0.0}; }
 
-/// gradient3, and lap[i*3 + c] = sum_j c_ij (f_j - f_i)[c] from the same differences.
-template <class W>
-void gradient3_laplacian(std::size_t n, const Offset* off, const ParticleId* col, const W* w,
-                         const W* cw, const double* f, double* out, double* lap) {
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    v4 a0 = {}, a1 = {}, a2 = {}, l = {};
-    const v4 fi = load3(f + i * 3);
-    for (Offset k = off[i]; k < off[i + 1]; ++k) {
-      const v4 diff = load3(f + static_cast<std::size_t>(col[k]) * 3) - fi;
-      const W* g = w + k * 3;
-      a0 += diff * double(g[0]);
-      a1 += diff * double(g[1]);
-      a2 += diff * double(g[2]);
-      l += diff * double(cw[k]);
-    }
-    double* o = out + i * 9;
-    for (int c = 0; c < 3; ++c) o[c * 3] = a0[c], o[c * 3 + 1] = a1[c], o[c * 3 + 2] = a2[c];
-    for (int c = 0; c < 3; ++c) lap[i * 3 + c] = l[c];
-  }
-}
-
-/// gradient2, and lap[i*2 + c] = sum_j c_ij (f_j - f_i)[c].
-template <class W>
-void gradient2_laplacian(std::size_t n, const Offset* off, const ParticleId* col, const W* w,
-                         const W* cw, const double* f, double* out, double* lap) {
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    v2 a0 = {}, a1 = {}, l = {};
-    const v2 fi = {f[i * 2], f[i * 2 + 1]};
-    for (Offset k = off[i]; k < off[i + 1]; ++k) {
-      const double* fj = f + static_cast<std::size_t>(col[k]) * 2;
-      const v2 diff = v2{fj[0], fj[1]} - fi;
-      const W* g = w + k * 2;
-      a0 += diff * double(g[0]);
-      a1 += diff * double(g[1]);
-      l += diff * double(cw[k]);
-    }
-    double* o = out + i * 4;
-    for (int c = 0; c < 2; ++c) o[c * 2] = a0[c], o[c * 2 + 1] = a1[c];
-    for (int c = 0; c < 2; ++c) lap[i * 2 + c] = l[c];
-  }
-}
-
 /// out[(i*NC + c)*D + b] = sum_j (f_j[c] - f_i[c]) g_ij[b].
 template <int D, int NC, class W>
 void gradient(std::size_t n, const Offset* off, const ParticleId* col, const W* w, const double* f,
@@ -90,13 +46,15 @@ void gradient(std::size_t n, const Offset* off, const ParticleId* col, const W* 
   }
 }
 
-/// gradient<3, 3>: the accumulators are the three columns of grad f.
-template <class W>
+/// gradient<3, 3>: the accumulators are the three columns of grad f. With Laplacian, also
+/// lap[i*3 + c] = sum_j cw_ij (f_j - f_i)[c] from the same differences (cw: one scalar per
+/// bond); without, cw and lap are not read.
+template <class W, bool Laplacian = false>
 void gradient3(std::size_t n, const Offset* off, const ParticleId* col, const W* w, const double* f,
-               double* out) {
+               double* out, const W* cw = nullptr, double* lap = nullptr) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    v4 a0 = {}, a1 = {}, a2 = {};
+    v4 a0 = {}, a1 = {}, a2 = {}, l = {};
     const v4 fi = load3(f + i * 3);
     for (Offset k = off[i]; k < off[i + 1]; ++k) {
       const v4 diff = load3(f + static_cast<std::size_t>(col[k]) * 3) - fi;
@@ -104,19 +62,22 @@ void gradient3(std::size_t n, const Offset* off, const ParticleId* col, const W*
       a0 += diff * double(g[0]);
       a1 += diff * double(g[1]);
       a2 += diff * double(g[2]);
+      if constexpr (Laplacian) l += diff * double(cw[k]);
     }
     double* o = out + i * 9;
     for (int c = 0; c < 3; ++c) o[c * 3] = a0[c], o[c * 3 + 1] = a1[c], o[c * 3 + 2] = a2[c];
+    if constexpr (Laplacian)
+      for (int c = 0; c < 3; ++c) lap[i * 3 + c] = l[c];
   }
 }
 
-/// gradient<2, 2>.
-template <class W>
+/// gradient<2, 2>, and the same optional Laplacian as gradient3.
+template <class W, bool Laplacian = false>
 void gradient2(std::size_t n, const Offset* off, const ParticleId* col, const W* w, const double* f,
-               double* out) {
+               double* out, const W* cw = nullptr, double* lap = nullptr) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    v2 a0 = {}, a1 = {};
+    v2 a0 = {}, a1 = {}, l = {};
     const v2 fi = {f[i * 2], f[i * 2 + 1]};
     for (Offset k = off[i]; k < off[i + 1]; ++k) {
       const double* fj = f + static_cast<std::size_t>(col[k]) * 2;
@@ -124,9 +85,12 @@ void gradient2(std::size_t n, const Offset* off, const ParticleId* col, const W*
       const W* g = w + k * 2;
       a0 += diff * double(g[0]);
       a1 += diff * double(g[1]);
+      if constexpr (Laplacian) l += diff * double(cw[k]);
     }
     double* o = out + i * 4;
     for (int c = 0; c < 2; ++c) o[c * 2] = a0[c], o[c * 2 + 1] = a1[c];
+    if constexpr (Laplacian)
+      for (int c = 0; c < 2; ++c) lap[i * 2 + c] = l[c];
   }
 }
 

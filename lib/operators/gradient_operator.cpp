@@ -131,10 +131,11 @@ void GradientOperator::apply_with_laplacian(const double* f, double* out, double
   const std::size_t n = rows();
   const Offset* off = offsets_.data();
   const ParticleId* col = cols_.data();
-  if (dim_ == 2 && !w32_.empty()) return k::gradient2_laplacian(n, off, col, w32_.data(), c32_.data(), f, out, lap);
-  if (dim_ == 2) return k::gradient2_laplacian(n, off, col, w_.data(), c_.data(), f, out, lap);
-  if (!w32_.empty()) return k::gradient3_laplacian(n, off, col, w32_.data(), c32_.data(), f, out, lap);
-  k::gradient3_laplacian(n, off, col, w_.data(), c_.data(), f, out, lap);
+  const bool single = !w32_.empty();
+  if (dim_ == 2 && single) return k::gradient2<float, true>(n, off, col, w32_.data(), f, out, c32_.data(), lap);
+  if (dim_ == 2) return k::gradient2<double, true>(n, off, col, w_.data(), f, out, c_.data(), lap);
+  if (single) return k::gradient3<float, true>(n, off, col, w32_.data(), f, out, c32_.data(), lap);
+  k::gradient3<double, true>(n, off, col, w_.data(), f, out, c_.data(), lap);
 }
 
 std::size_t GradientOperator::memory_bytes() const {
