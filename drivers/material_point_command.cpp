@@ -1,6 +1,5 @@
 // perinom material-point: the seed's biaxial tests (seed 000 Table 2, THEORY sec. 9) at one
 // Drucker-Prager material point, by the return map and by the sub-stepped rate equations.
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,14 +13,6 @@
 namespace perinom::cli {
 namespace {
 
-struct Table2Test {
-  double confining, h, d0;
-};
-
-// Table 2: E = 30 MPa, nu = 0.25, phi = 35 deg, c = 60 kPa, m0 = 0.2 for every test.
-constexpr Table2Test table2[7] = {{400e3, 0, 0}, {600e3, 0, 0}, {800e3, 0, 0}, {1000e3, 0, 0},
-                                  {600e3, 25, 0}, {600e3, 50, 0}, {600e3, 0, 1}};
-
 double mean_stress(const double* s) { return (s[0] + s[4] + s[8]) / 3.0; }
 
 }  // namespace
@@ -29,17 +20,9 @@ double mean_stress(const double* s) { return (s[0] + s[4] + s[8]) / 3.0; }
 int material_point(const Options& opt) {
   if (opt.test < 1 || opt.test > 7) throw InputError("--test must be 1 ... 7 (seed 000 Table 2)");
   if (opt.substeps < 1) throw InputError("--substeps must be at least 1");
-  const Table2Test t = table2[opt.test - 1];
-  DruckerPrager dp;
-  dp.E = 30e6;
-  dp.nu = 0.25;
-  dp.friction_angle = 35.0 * M_PI / 180.0;
-  dp.cohesion = 60e3;
-  dp.m0 = 0.2;
-  dp.h = t.h;
-  dp.d0 = t.d0;
-  BiaxialProtocol protocol;
-  protocol.confining = t.confining;
+  const BiaxialTest t = seed_biaxial_test(opt.test);
+  const DruckerPrager& dp = t.material;
+  const BiaxialProtocol& protocol = t.protocol;
   const auto path = drive_biaxial(dp, protocol);
   const auto reference = drive_biaxial(dp, protocol, opt.substeps);
 
@@ -62,7 +45,7 @@ int material_point(const Options& opt) {
   const auto& end = path.back().state;
   const auto& ref = reference.back().state;
   std::printf("perinom: biaxial test %d (confining %.0f kPa, h = %g, d0 = %g), plane strain, %d + %d steps\n",
-              opt.test, t.confining / 1e3, t.h, t.d0, protocol.consolidation_steps, protocol.compression_steps);
+              opt.test, protocol.confining / 1e3, dp.h, dp.d0, protocol.consolidation_steps, protocol.compression_steps);
   std::printf("  final von Mises          %.2f kPa (sub-stepped, %d per step: %.2f kPa)\n", von_mises(end.sigma) / 1e3,
               opt.substeps, von_mises(ref.sigma) / 1e3);
   std::printf("  final eq. plastic strain %.5f (sub-stepped: %.5f)\n", end.xi, ref.xi);

@@ -37,6 +37,38 @@ void add_plastic_strain(const double* trial, const double* sigma, double K, doub
   for (int k = 0; k < 9; ++k) eps_p[k] += (d[k] - (k % 4 == 0 ? tr / 3.0 : 0.0)) / (2.0 * G) + (k % 4 == 0 ? tr / (9.0 * K) : 0.0);
 }
 
+// The elastic trial from state n and its compression-positive invariants.
+struct Trial {
+  double sigma[9];
+  Invariants v;
+};
+
+Trial trial_state(const DruckerPrager& dp, const DruckerPrager::State& n, const double* deps) {
+  Trial t;
+  elastic_trial(n.sigma, deps, dp.bulk(), dp.shear(), t.sigma);
+  double sc[9];
+  for (int k = 0; k < 9; ++k) sc[k] = -t.sigma[k];
+  t.v = invariants(sc);
+  return t;
+}
+
+// The radial return at multiplier dl: xi = xi_n + dl/2, q = q_tr - G dl,
+// I1 = I1_tr + 9 K m d0 A dl; f there, and df/d dl (dm = dm/d dl).
+struct RadialPoint {
+  double m, dm, I1, f, slope;
+};
+
+RadialPoint radial_point(const DruckerPrager& dp, const Invariants& v, double xi_n, double dl) {
+  const double K = dp.bulk(), G = dp.shear(), a = dp.A(), b = dp.B(), d0 = dp.d0;
+  RadialPoint p;
+  p.m = dp.m(xi_n + 0.5 * dl);
+  p.dm = 0.5 * dp.m_prime(xi_n + 0.5 * dl);
+  p.I1 = v.I1 + 9.0 * K * p.m * d0 * a * dl;
+  p.f = v.q - G * dl - p.m * (a * p.I1 + b);
+  p.slope = -G - p.dm * (a * p.I1 + b) - p.m * a * 9.0 * K * d0 * a * (p.m + dl * p.dm);
+  return p;
+}
+
 }  // namespace
 
 double DruckerPrager::A() const {
@@ -58,26 +90,17 @@ double DruckerPrager::yield(const double* sigma, double xi) const {
 
 DruckerPrager::Return DruckerPrager::update(const State& n, const double* deps, State& out) const {
   const double K = bulk(), G = shear(), a = A(), b = B();
-  double trial[9], sc[9];
-  elastic_trial(n.sigma, deps, K, G, trial);
-  for (int k = 0; k < 9; ++k) sc[k] = -trial[k];
-  const Invariants v = invariants(sc);
+  const Trial t = trial_state(*this, n, deps);
+  const Invariants& v = t.v;
+  const double* trial = t.sigma;
   out = n;
   std::copy(trial, trial + 9, out.sigma);
   const double f_trial = v.q - m(n.xi) * (a * v.I1 + b);
   const double scale = std::max({v.q, std::abs(a * v.I1) + b, 1e-300});
   if (f_trial <= 1e-12 * scale) return Return::elastic;
 
-  // f(dl) on the radial return: q = q_tr - G dl, I1 = I1_tr + 9 K m d0 A dl, xi = xi_n + dl/2.
-  auto f = [&](double dl, double* slope) {
-    const double x = n.xi + 0.5 * dl, mm = m(x);
-    const double dm = 0.5 * h * (1.0 - m0) / ((1.0 + h * x) * (1.0 + h * x));  // dm/d(dl)
-    const double I1 = v.I1 + 9.0 * K * mm * d0 * a * dl;
-    if (slope) *slope = -G - dm * (a * I1 + b) - mm * a * 9.0 * K * d0 * a * (mm + dl * dm);
-    return v.q - G * dl - mm * (a * I1 + b);
-  };
   const double upper = v.q / G;
-  if (a > 0.0 && f(upper, nullptr) >= 0.0) {
+  if (a > 0.0 && radial_point(*this, v, n.xi, upper).f >= 0.0) {
     // Apex: s = 0 and A I1 + B = 0; the deviatoric plastic strain is s_tr / 2G.
     for (int k = 0; k < 9; ++k) out.sigma[k] = k % 4 == 0 ? b / (3.0 * a) : 0.0;  // I1 = -B/A
     out.xi = n.xi + 0.5 * upper;
@@ -87,8 +110,8 @@ DruckerPrager::Return DruckerPrager::update(const State& n, const double* deps, 
   // f decreases on [0, upper] from f_trial > 0 to below 0: Newton, kept inside the bracket.
   double lo = 0.0, hi = upper, dl = std::min(upper, f_trial / (G + 9.0 * K * m(n.xi) * m(n.xi) * d0 * a * a));
   for (int it = 0; it < 100; ++it) {
-    double slope = 0.0;
-    const double r = f(dl, &slope);
+    const RadialPoint p = radial_point(*this, v, n.xi, dl);
+    const double r = p.f, slope = p.slope;
     if (std::abs(r) <= 1e-14 * scale) break;
     (r > 0.0 ? lo : hi) = dl;
     double next = slope < 0.0 ? dl - r / slope : 0.5 * (lo + hi);
@@ -96,8 +119,7 @@ DruckerPrager::Return DruckerPrager::update(const State& n, const double* deps, 
     if (hi - lo <= 1e-16 * upper) break;
     dl = next;
   }
-  const double mm = m(n.xi + 0.5 * dl);
-  const double I1 = v.I1 + 9.0 * K * mm * d0 * a * dl, shrink = 1.0 - G * dl / v.q;
+  const double I1 = radial_point(*this, v, n.xi, dl).I1, shrink = 1.0 - G * dl / v.q;
   for (int k = 0; k < 9; ++k) out.sigma[k] = -(v.s[k] * shrink + (k % 4 == 0 ? I1 / 3.0 : 0.0));
   out.xi = n.xi + 0.5 * dl;
   add_plastic_strain(trial, out.sigma, K, G, out.eps_p);
@@ -120,14 +142,10 @@ DruckerPrager::Return DruckerPrager::tangent(const State& n, const double* deps,
   // Smooth return, compression positive (the signs cancel in d sigma / d eps). With
   // nhat = s_tr / 2 q_tr: d q_tr = 2G nhat : de, d I1_tr = 3K tr de, and F(dl; q_tr, I1_tr) = 0
   // gives d dl = (2G nhat - 3K m A I) : de / (-dF/d dl).
-  double trial[9], sc[9];
-  elastic_trial(n.sigma, deps, K, G, trial);
-  for (int k = 0; k < 9; ++k) sc[k] = -trial[k];
-  const Invariants v = invariants(sc);
-  const double a_ = A(), b_ = B(), dl = 2.0 * (out.xi - n.xi), x = out.xi, mm = m(x);
-  const double dm = 0.5 * h * (1.0 - m0) / ((1.0 + h * x) * (1.0 + h * x));  // dm / d dl
-  const double I1 = v.I1 + 9.0 * K * mm * d0 * a_ * dl;
-  const double slope = -G - dm * (a_ * I1 + b_) - mm * a_ * 9.0 * K * d0 * a_ * (mm + dl * dm);
+  const Invariants v = trial_state(*this, n, deps).v;
+  const double a_ = A(), dl = 2.0 * (out.xi - n.xi);
+  const RadialPoint p = radial_point(*this, v, n.xi, dl);
+  const double mm = p.m, dm = p.dm, slope = p.slope;
   double ddl[9], dq[9];
   for (int k = 0; k < 9; ++k) {
     dq[k] = 2.0 * G * v.s[k] / (2.0 * v.q);
@@ -163,7 +181,7 @@ void DruckerPrager::update_substepped(const State& n, const double* deps, int su
     if (yield(trial, out.xi) > 0.0 && v.q > 0.0) {
       // Continuum operator at the start of the sub-step: dl = (n_f : C : de) / (n_f : C : n_g + H),
       // n_f = s/2q - m A I, n_g = s/2q - m d0 A I, H = m'(xi) (A I1 + B) / 2 (compression positive).
-      const double mm = m(out.xi), dm = h * (1.0 - m0) / ((1.0 + h * out.xi) * (1.0 + h * out.xi));
+      const double mm = m(out.xi), dm = m_prime(out.xi);
       double s_de = 0.0;
       const double tr_de = -(d[0] + d[4] + d[8]);
       for (int k = 0; k < 9; ++k) s_de += v.s[k] * -d[k];

@@ -1,6 +1,7 @@
 #include "perinom/materials/material_point.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "perinom/core/error.hpp"
 
@@ -48,6 +49,26 @@ void mixed_step(const DruckerPrager& dp, int substeps, double sxx, bool hold_y, 
 }
 
 }  // namespace
+
+BiaxialTest seed_biaxial_test(int test) {
+  struct Row {
+    double confining, h, d0;
+  };
+  constexpr Row table2[7] = {{400e3, 0, 0}, {600e3, 0, 0}, {800e3, 0, 0}, {1000e3, 0, 0},
+                             {600e3, 25, 0}, {600e3, 50, 0}, {600e3, 0, 1}};
+  if (test < 1 || test > 7) throw std::out_of_range("seed 000 Table 2 has tests 1 ... 7");
+  const Row& r = table2[test - 1];
+  BiaxialTest t;
+  t.material.E = 30e6;
+  t.material.nu = 0.25;
+  t.material.friction_angle = 35.0 * M_PI / 180.0;
+  t.material.cohesion = 60e3;
+  t.material.m0 = 0.2;
+  t.material.h = r.h;
+  t.material.d0 = r.d0;
+  t.protocol.confining = r.confining;
+  return t;
+}
 
 std::vector<MaterialPointRecord> drive_biaxial(const DruckerPrager& dp, const BiaxialProtocol& p, int substeps) {
   std::vector<MaterialPointRecord> records(1);

@@ -37,6 +37,8 @@ struct DruckerPrager {
   double A() const;
   double B() const;
   double m(double xi) const { return (m0 + h * xi) / (1.0 + h * xi); }
+  /// dm/dxi.
+  double m_prime(double xi) const { return h * (1.0 - m0) / ((1.0 + h * xi) * (1.0 + h * xi)); }
   /// f at a tension-positive stress and xi (Pa; > 0 outside the yield surface).
   double yield(const double* sigma, double xi) const;
 

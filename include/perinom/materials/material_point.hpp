@@ -17,6 +17,16 @@ struct BiaxialProtocol {
   int compression_steps = 100;
 };
 
+/// Seed 000 Table 2: E = 30 MPa, nu = 0.25, phi = 35 deg, c = 60 kPa, m0 = 0.2 throughout;
+/// tests 1-4 confine at 400, 600, 800, 1000 kPa (h = 0, d0 = 0); tests 5 and 6 harden
+/// (h = 25, 50) and test 7 dilates (d0 = 1), at 600 kPa.
+struct BiaxialTest {
+  DruckerPrager material;
+  BiaxialProtocol protocol;
+};
+/// Test 1 ... 7 of Table 2; throws std::out_of_range otherwise.
+BiaxialTest seed_biaxial_test(int test);
+
 /// The state after each load step.
 struct MaterialPointRecord {
   double eps_xx = 0.0, eps_yy = 0.0;
