@@ -6,7 +6,8 @@
 namespace perinom {
 
 /// Below this many elements a loop runs on the calling thread: waking the team costs more
-/// than the loop (tens of microseconds against a few for a small scene's vectors).
+/// than the loop. Measured on the 2-core development machine: an empty parallel region
+/// costs 4 us (21 us with OMP_WAIT_POLICY=PASSIVE), a serial pass over 300 doubles 0.06 us.
 constexpr std::size_t parallel_minimum = 16384;
 
 /// Visits k = 0..n-1 in 64 fixed contiguous blocks, in parallel; body(k, acc) may update
