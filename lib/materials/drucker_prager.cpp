@@ -88,6 +88,11 @@ double DruckerPrager::yield(const double* sigma, double xi) const {
   return v.q - m(xi) * (A() * v.I1 + B());
 }
 
+void DruckerPrager::elastic(const State& n, const double* deps, State& out) const {
+  out = n;
+  elastic_trial(n.sigma, deps, bulk(), shear(), out.sigma);
+}
+
 DruckerPrager::Return DruckerPrager::update(const State& n, const double* deps, State& out) const {
   const double K = bulk(), G = shear(), a = A(), b = B();
   const Trial t = trial_state(*this, n, deps);

@@ -40,6 +40,11 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
   if (formulation_ != Formulation::classical && surface_.in_band.size() != cloud.size())
     throw std::invalid_argument("CorrespondenceModel: the improved and strong formulations need surface data");
   if (formulation_ == Formulation::classical) surface_ = Surface{};
+  if (options.plasticity) {
+    if (material.plane == PlaneCondition::stress)
+      throw InputError("material.plane: Drucker-Prager plasticity needs plane strain in 2-D");
+    plastic_.emplace(*options.plasticity, dim_, volume_.size());
+  }
   const BondWeights weights = bond_weights(cloud, families, options.influence);
   G_ = GradientOperator(cloud, families, weights, options.weight_precision);
   if (options.stabilization > 0.0) {
@@ -85,7 +90,8 @@ void CorrespondenceModel::internal_force(const double* u, double* f) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     double* q = Q_.data() + i * d2;
-    material_.stress(H_.data() + i * d2, q);
+    if (plastic_) plastic_->stress(i, H_.data() + i * d2, q);
+    else material_.stress(H_.data() + i * d2, q);
     if (strong_rows) std::copy(q, q + d2, P_.data() + i * d2);
     for (int k = 0; k < d2; ++k) q[k] = q[k] * volume_[i] - (stabilized ? B_[i * d2 + k] : 0.0);
   }
@@ -123,8 +129,14 @@ double CorrespondenceModel::energy(const double* u) {
   const std::size_t n = particles();
   G_.apply(u, dim_, H_.data());
   // Summed in fixed blocks: the same bits for any thread count.
+  if (plastic_) {
+    // The stored elastic energy of the state at u (plastic work is dissipated, not stored).
+    const int dd = dim_ * dim_;
+    std::vector<double> P(dd);
+    for (std::size_t i = 0; i < n; ++i) plastic_->stress(i, H_.data() + i * dd, P.data());
+  }
   double w = parallel_sums<1>(n, [&](std::size_t i, double* acc) {
-    acc[0] += volume_[i] * material_.energy(H_.data() + i * d2);
+    acc[0] += volume_[i] * (plastic_ ? plastic_->stored_energy(i) : material_.energy(H_.data() + i * d2));
   })[0];
   if (S_) {
     // W_s = 1/2 u . S u, with S u = G^T(-B) + the direct bond term, or the stored S0.
@@ -155,20 +167,52 @@ std::vector<double> CorrespondenceModel::lumped_mass() const {
   return m;
 }
 
-void CorrespondenceModel::visit_tangent_rows(
+void CorrespondenceModel::visit_rows(
+    const PointwiseTangent& C,
     const std::function<void(std::size_t, const std::vector<ParticleId>&,
                              const std::vector<double>&)>& visit) const {
-  std::vector<double> C(dim_ * dim_ * dim_ * dim_);
-  material_.tangent(C.data());
   const StrongRows strong{surface_.in_band.data(), surface_.normal_over_h.data()};
-  for_each_tangent_row(G_, PointwiseTangent{C.data(), 0, volume_.data()}, stabilization(), visit,
+  for_each_tangent_row(G_, C, stabilization(), visit,
                        formulation_ == Formulation::classical ? nullptr : &strong);
 }
 
+void CorrespondenceModel::visit_tangent_rows(
+    const std::function<void(std::size_t, const std::vector<ParticleId>&,
+                             const std::vector<double>&)>& visit) const {
+  if (!C_.empty()) {
+    visit_rows(PointwiseTangent{C_.data(), std::size_t(dim_ * dim_ * dim_ * dim_), volume_.data()}, visit);
+    return;
+  }
+  std::vector<double> C(dim_ * dim_ * dim_ * dim_);
+  material_.tangent(C.data());
+  visit_rows(PointwiseTangent{C.data(), 0, volume_.data()}, visit);
+}
+
+void CorrespondenceModel::prepare_tangent(const double* u) {
+  if (!plastic_) return;
+  const int d2 = dim_ * dim_, d4 = d2 * d2;
+  G_.apply(u, dim_, H_.data());
+  C_.resize(particles() * d4);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < particles(); ++i) plastic_->tangent(i, H_.data() + i * d2, C_.data() + i * d4);
+}
+
+void CorrespondenceModel::commit(const double* u) {
+  if (!plastic_) return;
+  const int d2 = dim_ * dim_;
+  G_.apply(u, dim_, H_.data());
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < particles(); ++i) plastic_->stress(i, H_.data() + i * d2, Q_.data() + i * d2);
+  plastic_->commit();
+}
+
 std::vector<double> CorrespondenceModel::stiffness_row_sums() const {
+  // The elastic stiffness: it bounds the plastic tangents, so the explicit mass stays safe.
   const int d = dim_;
   std::vector<double> sums(particles() * d, 0.0);
-  visit_tangent_rows([&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
+  std::vector<double> C(d * d * d * d);
+  material_.tangent(C.data());
+  visit_rows(PointwiseTangent{C.data(), 0, volume_.data()}, [&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
     for (std::size_t k = 0; k < cols.size(); ++k)
       for (int a = 0; a < d; ++a)
         for (int c = 0; c < d; ++c) sums[i * d + a] += std::abs(blocks[(k * d + a) * d + c]);
@@ -187,6 +231,7 @@ std::vector<std::pair<std::string, std::size_t>> CorrespondenceModel::memory() c
   m.emplace_back("workspaces (grad u, V.P, P, B, r)",
                  (H_.size() + Q_.size() + P_.size() + B_.size() + r_.size() + Su_.size() + lap_.size()) *
                      sizeof(double));
+  if (plastic_) m.emplace_back("plastic states (committed and trial)", plastic_->memory_bytes() + C_.size() * sizeof(double));
   if (formulation_ != Formulation::classical)
     m.emplace_back("surface normals and band E",
                    surface_.normal_over_h.size() * sizeof(double) +
@@ -200,8 +245,14 @@ void CorrespondenceModel::stress3(const double* u, std::vector<double>& sigma) c
   std::vector<double> H(particles() * d2);
   gradient(u, H.data());
   sigma.resize(particles() * 9);
-  for (std::size_t i = 0; i < particles(); ++i)
-    material_.stress3(H.data() + i * d2, sigma.data() + i * 9);
+  for (std::size_t i = 0; i < particles(); ++i) {
+    if (!plastic_) {
+      material_.stress3(H.data() + i * d2, sigma.data() + i * 9);
+      continue;
+    }
+    const auto point = plastic_->evaluate(i, H.data() + i * d2);
+    std::copy(point.law.sigma, point.law.sigma + 9, sigma.data() + i * 9);
+  }
 }
 
 }  // namespace perinom

@@ -77,32 +77,32 @@ void StaticSystem::fill(bool symbolic) {
   }
 }
 
-void StaticSystem::assemble(const double*) {
-  // Linear elasticity: the tangent does not depend on u. Refilling keeps the pattern, so
-  // this is where a state-dependent (plastic) tangent will plug in.
+void StaticSystem::assemble(const double* u) {
+  // Linear elasticity: the tangent does not depend on u; plasticity: the consistent
+  // tangents at u. The pattern is kept either way.
+  if (model_.plastic()) model_.prepare_tangent(u);
   fill(false);
 }
 
 void StaticSystem::residual(const double* u, double s, double* R) {
   model_.internal_force(u, R);
-  if (!loading_.force.empty())
-    for (std::size_t k = 0; k < dofs(); ++k) R[k] -= s * loading_.force[k];
+  if (loading_.has_force())
+    for (std::size_t k = 0; k < dofs(); ++k) R[k] -= loading_.force_at(s, k);
   for (std::size_t k = 0; k < loading_.fixed.size(); ++k) {
     double v = u[loading_.fixed[k]];
     if (loading_.coupled_constraints()) {
       v /= loading_.scale[k];
       for (Offset c = loading_.couplings[k]; c < loading_.couplings[k + 1]; ++c) v += loading_.coef[c] * u[loading_.coupled[c]];
     }
-    R[loading_.fixed[k]] = kappa_ * (v - s * loading_.value[k]);
+    R[loading_.fixed[k]] = kappa_ * (v - loading_.target(s, k));
   }
 }
 
 double StaticSystem::load_norm(const double* u, double s) {
   model_.internal_force(u, fint_.data());
-  double reactions = 0.0, forces = 0.0;
+  double reactions = 0.0;
   for (const auto dof : loading_.fixed) reactions += fint_[dof] * fint_[dof];
-  for (const double f : loading_.force) forces += f * f;
-  return std::max(s * std::sqrt(forces), std::sqrt(reactions));
+  return std::max(loading_.force_norm(s), std::sqrt(reactions));
 }
 
 }  // namespace perinom

@@ -2,10 +2,6 @@
 /// @file Drucker-Prager elastoplasticity with hyperbolic hardening (THEORY sec. 9), small
 /// strain, integrated by the closest point projection. Knows nothing of particles.
 ///
-/// PARTIAL (issue 5): the law, its return map and its consistent tangent are here and
-/// verified at the material point; the material-point command, the LBC solver and the scene
-/// keys are not yet written.
-///
 /// The interface takes and returns tension-positive 3 x 3 tensors (row-major), like
 /// LinearElastic::stress3. Inside, as in THEORY sec. 9 and the seed, compression is
 /// positive: I1 = tr(-sigma), s = dev(-sigma), q = sqrt(J2) = sqrt(s:s / 2).
@@ -47,6 +43,8 @@ struct DruckerPrager {
   /// point projection in invariant space (one scalar equation for the plastic multiplier,
   /// the seed's cubic once m is cleared, solved by safeguarded Newton) or the apex return.
   Return update(const State& n, const double* deps, State& out) const;
+  /// The elastic trial alone: sigma = sigma_n + C : deps, plastic variables kept.
+  void elastic(const State& n, const double* deps, State& out) const;
 
   /// The consistent (algorithmic) tangent of `update`: D[((a*3 + b)*3 + c)*3 + e] =
   /// d sigma_ab / d deps_ce of the same increment (C when elastic, 0 at the apex), and the

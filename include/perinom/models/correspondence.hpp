@@ -14,11 +14,13 @@
 #include "perinom/geometry/surface.hpp"
 #include "perinom/materials/linear_elastic.hpp"
 #include "perinom/models/model.hpp"
+#include "perinom/models/plastic_points.hpp"
 #include "perinom/neighbors/families.hpp"
 #include "perinom/operators/gradient_operator.hpp"
 #include "perinom/operators/influence.hpp"
 #include "perinom/operators/fused_stabilization.hpp"
 #include "perinom/operators/stabilization.hpp"
+#include "perinom/operators/tangent_rows.hpp"
 
 namespace perinom {
 
@@ -45,6 +47,9 @@ struct CorrespondenceOptions {
   StabilizationStorage stabilization_storage = StabilizationStorage::automatic;
   /// Storage of G's weights (the stabilization and tangents use them as stored).
   WeightPrecision weight_precision = WeightPrecision::float64;
+  /// A Drucker-Prager law in place of the linear elastic one (its E and nu must be the
+  /// material's; the stabilization and the explicit solvers' mass use the elastic moduli).
+  std::optional<DruckerPrager> plasticity;
 };
 
 class CorrespondenceModel : public Model {
@@ -72,9 +77,19 @@ class CorrespondenceModel : public Model {
   void visit_tangent_rows(const std::function<void(std::size_t, const std::vector<ParticleId>&,
                                                    const std::vector<double>&)>& visit) const;
 
-  /// grad u at every particle (N x d x d), and the 3 x 3 Cauchy stress (N x 9).
+  /// grad u at every particle (N x d x d), and the 3 x 3 Cauchy stress (N x 9). With
+  /// plasticity the stress is the return map from the committed state at u.
   void gradient(const double* u, double* H) const;
   void stress3(const double* u, std::vector<double>& sigma) const;
+
+  /// The particles' plastic states, or nullptr for an elastic model.
+  PlasticPoints* plastic() { return plastic_ ? &*plastic_ : nullptr; }
+  const PlasticPoints* plastic() const { return plastic_ ? &*plastic_ : nullptr; }
+  /// Plasticity: evaluates every particle at u (by the current mode) and commits.
+  void commit(const double* u);
+  /// Plasticity: the consistent tangents at u, used by visit_tangent_rows until the next
+  /// call (the Newton path calls it before each assembly). Elastic models ignore it.
+  void prepare_tangent(const double* u);
 
   const GradientOperator& G() const { return G_; }
   /// The stabilization operator (matrix-free), or nullptr when C_hg = 0.
@@ -102,6 +117,11 @@ class CorrespondenceModel : public Model {
   std::vector<double> H_, Q_, P_;  // workspaces: grad u, V . P, and P for strong rows
   std::vector<double> B_, r_, Su_;  // workspaces of the stabilization: B (or T), r, S u
   std::vector<double> lap_;          // fused: the weighted Laplacian of u
+  std::optional<PlasticPoints> plastic_;
+  std::vector<double> C_;            // plasticity: per-particle tangents (prepare_tangent)
+  void visit_rows(const PointwiseTangent& C,
+                  const std::function<void(std::size_t, const std::vector<ParticleId>&,
+                                           const std::vector<double>&)>& visit) const;
 };
 
 }  // namespace perinom

@@ -8,12 +8,13 @@
 
 namespace perinom {
 
-/// A load at factor s in [0, 1] applies s * force and prescribes, for each constrained
-/// degree of freedom k, either u[fixed[k]] = s * value[k] (the particle itself: the seed's
+/// A load at factor s in [0, 1] applies force0 + s (force - force0) and prescribes, for each
+/// constrained degree of freedom k, with the target t_k = value0[k] + s * value[k], either
+/// u[fixed[k]] = t_k (the particle itself: the seed's
 /// "outer layer" condition), or, when the constraint has couplings, the value at a point
 /// off the particle through its first-order reconstruction u_i + (grad u)_i . d = s * value
 /// (a face-located condition). The latter reads
-///   u[fixed[k]] = scale[k] * (s * value[k] - sum_c coef[c] u[coupled[c]]),
+///   u[fixed[k]] = scale[k] * (t_k - sum_c coef[c] u[coupled[c]]),
 /// c over couplings[k] .. couplings[k+1).
 struct Loading {
   std::vector<std::int64_t> fixed;  ///< degree-of-freedom indices (i*dofs_per_particle + a)
@@ -23,6 +24,26 @@ struct Loading {
   std::vector<Offset> couplings;    ///< CSR offsets, fixed.size() + 1 entries
   std::vector<std::int64_t> coupled;
   std::vector<double> coef, scale;
+  // Where a load stage starts (begin_stage); empty: from zero.
+  std::vector<double> value0;  ///< the constrained values at s = 0 (m)
+  std::vector<double> force0;  ///< the external force at s = 0 (N)
+
+  /// The external force on dof k at factor s.
+  double force_at(double s, std::size_t k) const {
+    const double f0 = force0.empty() ? 0.0 : force0[k];
+    return f0 + s * ((force.empty() ? 0.0 : force[k]) - f0);
+  }
+  bool has_force() const { return !force.empty() || !force0.empty(); }
+  /// |external force at s|.
+  double force_norm(double s) const;
+  /// The prescribed value of constraint k at factor s.
+  double target(double s, std::size_t k) const {
+    return (value0.empty() ? 0.0 : value0[k]) + s * value[k];
+  }
+  /// Makes this loading start where the body is: value0 from u (the constrained values, or
+  /// their face reconstructions) and force0 from the previous stage's full force (none for
+  /// the first stage). Values and forces of this stage then act as increments and totals.
+  void begin_stage(const Loading* previous, const double* u);
 
   /// Adds a constraint, replacing an earlier one on the same dof.
   void fix(std::int64_t dof, double v);

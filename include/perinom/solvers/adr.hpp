@@ -1,7 +1,9 @@
 #pragma once
 /// @file Adaptive dynamic relaxation (THEORY sec. 8; Kilic and Madenci 2010).
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "perinom/core/progress.hpp"
 #include "perinom/models/loading.hpp"
@@ -27,6 +29,29 @@ struct SolveReport {
   double end_time = 0.0;             ///< Verlet only: simulated time reached (s)
   std::string failure;               ///< why the solve stopped early (NaN or Inf), or empty
   History history;
+};
+
+/// ADR's state between load levels: the fictitious mass (from the model's exact stiffness
+/// row sums, computed once), the velocities and work vectors. solve_adr runs it over load
+/// steps; the load-path solvers (LBC) call balance() once per balance round.
+class AdrRelaxation {
+ public:
+  AdrRelaxation(Model& model, const AdrOptions& options, Progress* progress = nullptr);
+  /// Relaxes u, from rest, to equilibrium under `loading` at factor s. Iterations count
+  /// into rep (and stop at options.max_iterations over all calls); rep.residual and
+  /// rep.displacement_change are the last ones. after_iteration (if set) runs after each
+  /// iteration's force evaluation. Returns whether it converged; throws SolveError on NaN.
+  bool balance(const Loading& loading, double s, std::vector<double>& u, SolveReport& rep,
+               const Observer& observe = {}, const std::function<void()>& after_iteration = {});
+  /// The progress sample's load-step fields (for the bar).
+  void set_load_step(int step, int steps) { sample_.load_step = step, sample_.load_steps = steps; }
+
+ private:
+  Model& model_;
+  AdrOptions opt_;
+  Progress* progress_;
+  ProgressSample sample_;
+  std::vector<double> inv_lambda_, v_, f_, f_old_, fint_, last_good_;
 };
 
 /// Solves f_int(u) = s * f_ext with u = s * u_bar on the constrained dofs, for
