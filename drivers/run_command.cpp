@@ -16,6 +16,8 @@
 #include "perinom/core/timer.hpp"
 #include "perinom/solvers/newton.hpp"
 #include "perinom/solvers/verlet.hpp"
+#include "load_path_run.hpp"
+#include "snapshot.hpp"
 #include "terminal_progress.hpp"
 
 namespace perinom::cli {
@@ -35,30 +37,6 @@ void prepare_output(const std::string& dir) {
   fs::remove(probe, ec);
 }
 
-/// Point data for one snapshot: displacement (3 components), stress, von Mises, volume.
-void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const std::vector<double>& u) {
-  const int d = p.cloud.dim;
-  const std::size_t n = p.cloud.size();
-  std::vector<double> u3(n * 3, 0.0), sigma, vm(n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int a = 0; a < d; ++a) u3[i * 3 + a] = u[i * d + a];
-  p.model->stress3(u.data(), sigma);
-  for (std::size_t i = 0; i < n; ++i) vm[i] = von_mises(sigma.data() + i * 9);
-  std::vector<io::PointField> fields = {{"displacement", 3, u3.data()}, {"stress", 9, sigma.data()},
-                                        {"von_mises", 1, vm.data()}, {"volume", 1, p.cloud.volume.data()}};
-  // Improved and strong formulations: subregion 1 = E (strong form), 0 = D (weak form).
-  std::vector<double> subregion, surface;
-  const Surface& s = p.model->surface();
-  if (!s.in_band.empty()) {
-    subregion.assign(s.in_band.begin(), s.in_band.end());
-    surface.assign(s.on_surface.begin(), s.on_surface.end());
-    fields.push_back({"subregion_E", 1, subregion.data()});
-    fields.push_back({"surface", 1, surface.data()});
-  }
-  series.add(time, d, n, p.cloud.x.data(), fields);
-  series.write();
-}
-
 void write_history(const std::string& path, const History& h) {
   io::CsvWriter csv(path);
   csv.header(h.columns);
@@ -70,10 +48,9 @@ void write_history(const std::string& path, const History& h) {
 /// probes' values.
 Json probe_results(const Problem& p, const std::vector<double>& u, const std::string& dir) {
   const int d = p.cloud.dim;
-  std::vector<double> sigma, H(p.cloud.size() * d * d);
-  p.model->stress3(u.data(), sigma);
-  p.model->gradient(u.data(), H.data());
-  const ProbeFields fields{p.cloud, u, sigma, H};
+  const ProbeState state(p, u);
+  const std::vector<double>& sigma = state.sigma;
+  const ProbeFields fields = state.fields(p, u);
   Json out = Json::object();
   for (const auto& probe : p.probes) {
     if (!probe.spec.is_line) {
@@ -101,6 +78,22 @@ Json probe_results(const Problem& p, const std::vector<double>& u, const std::st
     out[probe.spec.name] = j;
   }
   return out;
+}
+
+/// How far the committed plastic strain has spread: particles yielded, xi's range and mean.
+Json plastic_summary(const PlasticPoints& plastic) {
+  double lo = INFINITY, hi = 0.0, sum = 0.0;
+  std::size_t yielded = 0;
+  for (const auto& point : plastic.committed()) {
+    lo = std::min(lo, point.law.xi), hi = std::max(hi, point.law.xi), sum += point.law.xi;
+    yielded += point.law.xi > 0.0;
+  }
+  Json j = Json::object();
+  j["particles_yielded"] = yielded;
+  j["eq_plastic_strain_min"] = plastic.size() ? lo : 0.0;
+  j["eq_plastic_strain_mean"] = plastic.size() ? sum / plastic.size() : 0.0;
+  j["eq_plastic_strain_max"] = hi;
+  return j;
 }
 
 NewtonOptions newton_options(const SolverSpec& s) {
@@ -176,9 +169,12 @@ int run(const Options& opt) {
                    }};
   TerminalProgress progress(scene.solver.type.c_str());
   SolveReport rep;
+  ProbeHistory probe_history;
   timer.start("solve");
   {
-    if (scene.solver.type == "adr") {
+    if (scene.load_path()) {
+      rep = run_load_path(p, u, series, probe_history, last_snapshot);
+    } else if (scene.solver.type == "adr") {
       AdrOptions o;
       o.tolerance = scene.solver.tolerance;
       o.displacement_tolerance = scene.solver.displacement_tolerance;
@@ -200,9 +196,14 @@ int run(const Options& opt) {
   }
   const std::string& failure = rep.failure;
   timer.start("output");
-  if (last_snapshot != rep.iterations || !failure.empty())
+  const std::int64_t steps_done = static_cast<std::int64_t>(rep.history.rows());
+  if (scene.load_path()) {
+    if (last_snapshot != steps_done || !failure.empty()) add_snapshot(series, double(steps_done), p, u);
+    probe_history.write(p, dir);
+  } else if (last_snapshot != rep.iterations || !failure.empty()) {
     add_snapshot(series, dynamic ? rep.end_time : double(rep.iterations), p, u);
-  write_history(dir + "/history.csv", rep.history);
+  }
+  write_history(dir + (scene.load_path() ? "/load_steps.csv" : "/history.csv"), rep.history);
   Json summary = Json::object();
   summary["scene"] = scene.source;
   summary["name"] = scene.name;
@@ -216,6 +217,7 @@ int run(const Options& opt) {
   solver["converged"] = failure.empty() && rep.converged;
   solver["residual"] = rep.residual;
   solver["displacement_change"] = rep.displacement_change;
+  if (scene.load_path()) solver["load_steps"] = static_cast<long long>(steps_done);
   if (dynamic) {
     solver["stable_time_step"] = rep.stable_time_step;
     solver["end_time"] = rep.end_time;
@@ -224,9 +226,10 @@ int run(const Options& opt) {
   summary["solver"] = solver;
   if (scene.solver.check == "newton" && failure.empty()) {
     timer.start("newton check");
-    summary["check"] = newton_check(p, u);
+    summary["check"] = scene.load_path() ? load_path_newton_check(p, u, probe_history) : newton_check(p, u);
     timer.start("output");
   }
+  if (const PlasticPoints* plastic = p.model->plastic()) summary["plasticity"] = plastic_summary(*plastic);
   summary["probes"] = probe_results(p, u, dir);
   timer.stop();
   Json wall = Json::object();
@@ -238,6 +241,10 @@ int run(const Options& opt) {
   if (dynamic)
     std::printf("perinom: %lld steps to t = %.6e s (stable step %.3e s); results in %s\n",
                 static_cast<long long>(rep.iterations), rep.end_time, rep.stable_time_step, dir.c_str());
+  else if (scene.load_path())
+    std::printf("perinom: %lld load steps, %lld %s iterations in all; results in %s\n",
+                static_cast<long long>(steps_done), static_cast<long long>(rep.iterations),
+                scene.solver.type == "newton" ? "Newton" : "ADR", dir.c_str());
   else
     std::printf("perinom: %s after %lld iterations (residual %.3e); results in %s\n",
                 rep.converged ? "converged" : "NOT converged", static_cast<long long>(rep.iterations),

@@ -85,11 +85,12 @@ std::size_t PlasticPoints::flag_violations(double tolerance) {
   return count;
 }
 
-void PlasticPoints::commit() {
-  plastic_last_ = 0;
-  for (std::size_t i = 0; i < trial_.size(); ++i)
-    if (trial_[i].law.xi > committed_[i].law.xi) ++plastic_last_;
-  committed_ = trial_;
+void PlasticPoints::commit() { committed_ = trial_; }
+
+void PlasticPoints::reset() {
+  std::fill(committed_.begin(), committed_.end(), Point{});
+  std::fill(trial_.begin(), trial_.end(), Point{});
+  std::fill(flagged_.begin(), flagged_.end(), std::uint8_t{0});
 }
 
 std::size_t PlasticPoints::flagged() const {

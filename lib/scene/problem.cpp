@@ -14,10 +14,11 @@ namespace {
 /// The side whose face carries each face-located constraint (axis -1: on the particle).
 using FaceOf = std::map<std::int64_t, Side>;
 
-Loading make_loading(const Scene& s, const PointCloud& cloud, FaceOf& face_of) {
+Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary,
+                     const PointCloud& cloud, FaceOf& face_of) {
   const int d = s.dim;
   Loading load;
-  for (const auto& b : s.boundary) {
+  for (const auto& b : boundary) {
     const auto ids = select(b.region, s.geometry, cloud);
     if (ids.empty()) throw InputError(b.where + ".region: selects no particle");
     for (int a = 0; a < d; ++a) {
@@ -132,7 +133,18 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
   }
   p.bonds = families.bonds();
   FaceOf face_of;
-  p.loading = make_loading(s, p.cloud, face_of);
+  p.loading = make_loading(s, s.boundary, p.cloud, face_of);
+  std::vector<FaceOf> stage_faces;
+  if (s.load_path() && s.stages.empty()) {
+    p.stages.push_back({"load", s.solver.load_steps, p.loading});
+    stage_faces.push_back(face_of);
+  }
+  for (const auto& st : s.stages) {
+    std::vector<BoundarySpec> boundary = s.boundary;
+    boundary.insert(boundary.end(), st.boundary.begin(), st.boundary.end());
+    stage_faces.emplace_back();
+    p.stages.push_back({st.name, st.steps, make_loading(s, boundary, p.cloud, stage_faces.back())});
+  }
   for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
   if (timer) timer->start("operators");
   CorrespondenceOptions opt;
@@ -142,6 +154,7 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
   opt.weight_precision =
       s.model.weight_precision == "single" ? WeightPrecision::float32 : WeightPrecision::float64;
   parse_formulation(s.model.formulation, opt.formulation);
+  opt.plasticity = s.plasticity;
   Surface surface;
   if (opt.formulation != Formulation::classical) {
     // E: within 2 delta of the surface (THEORY sec. 5); the strong form makes E everything.
@@ -155,6 +168,8 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
     throw InputError(s.source + ": " + horizon_key + ": " + e.what());
   }
   if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, p.model->G());
+  for (std::size_t k = 0; k < p.stages.size(); ++k)
+    if (!stage_faces[k].empty()) couple_to_faces(p.stages[k].loading, stage_faces[k], s.geometry, p.cloud, p.model->G());
   if (timer) timer->stop();
   return p;
 }
@@ -163,11 +178,29 @@ namespace {
 int axis_of(char c) { return c == 'x' ? 0 : c == 'y' ? 1 : 2; }
 }  // namespace
 
+double mean_stress(const double* sigma3) { return (sigma3[0] + sigma3[4] + sigma3[8]) / 3.0; }
+
+double equivalent_strain(const double* H, int d) {
+  double eps[9] = {};
+  for (int a = 0; a < d; ++a)
+    for (int b = 0; b < d; ++b) eps[a * 3 + b] = 0.5 * (H[a * d + b] + H[b * d + a]);
+  const double tr = (eps[0] + eps[4] + eps[8]) / 3.0;
+  double ee = 0.0;
+  for (int k = 0; k < 9; ++k) {
+    const double e = eps[k] - (k % 4 == 0 ? tr : 0.0);
+    ee += e * e;
+  }
+  return std::sqrt(2.0 / 3.0 * ee);
+}
+
 double probe_value(const ProbeSpec& spec, std::size_t i, const ProbeFields& f) {
   const int d = f.cloud.dim;
   if (spec.field == "displacement") return f.u[i * d + axis_of(spec.component[0])];
   if (spec.field == "stress")
     return f.sigma[i * 9 + axis_of(spec.component[0]) * 3 + axis_of(spec.component[1])];
+  if (spec.field == "mean_stress") return mean_stress(f.sigma.data() + i * 9);
+  if (spec.field == "equivalent_strain") return equivalent_strain(f.H.data() + i * d * d, d);
+  if (spec.field == "eq_plastic_strain") return f.plastic ? f.plastic->committed()[i].law.xi : 0.0;
   return von_mises(f.sigma.data() + i * 9);
 }
 

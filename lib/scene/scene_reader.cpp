@@ -77,10 +77,32 @@ void read_discretization(Fields f, Scene& s) {
   f.finish();
 }
 
+/// material.type: drucker_prager: the law's constants (THEORY sec. 9), angles in degrees.
+DruckerPrager read_drucker_prager(Fields& f, const LinearElastic& m) {
+  DruckerPrager dp;
+  dp.E = m.E;
+  dp.nu = m.nu;
+  const double phi = f.number("friction_angle");
+  if (!(phi >= 0.0 && phi < 90.0)) f.fail("friction_angle", "must lie in [0, 90) degrees");
+  dp.friction_angle = phi * M_PI / 180.0;
+  dp.cohesion = f.number("cohesion");
+  if (!(dp.cohesion >= 0.0)) f.fail("cohesion", "must be zero or positive (Pa)");
+  dp.m0 = f.number("m0", 1.0);
+  if (!(dp.m0 > 0.0 && dp.m0 <= 1.0)) f.fail("m0", "must lie in (0, 1]");
+  dp.d0 = f.number("d0", 0.0);
+  if (!(dp.d0 >= 0.0 && dp.d0 <= 1.0)) f.fail("d0", "must lie in [0, 1] (0: no dilatancy, 1: associated flow)");
+  dp.h = f.number("h", 0.0);
+  if (!(dp.h >= 0.0)) f.fail("h", "must be zero or positive (0: no hardening)");
+  if (dp.cohesion == 0.0 && phi == 0.0) f.fail("cohesion", "and friction_angle are both zero: the material has no strength");
+  return dp;
+}
+
 void read_material(Fields f, Scene& s) {
   auto& m = s.material;
   m.dim = s.dim;
-  if (f.text("type") != "linear_elastic") f.fail("type", "unknown material type (known: linear_elastic)");
+  const std::string type = f.text("type");
+  if (type != "linear_elastic" && type != "drucker_prager")
+    f.fail("type", "unknown material type (known: linear_elastic, drucker_prager)");
   m.E = f.number("E");
   if (!(m.E > 0.0)) f.fail("E", "must be positive");
   m.nu = f.number("nu");
@@ -94,6 +116,10 @@ void read_material(Fields f, Scene& s) {
     else f.fail("plane", "must be strain or stress");
   } else if (f.has("plane")) {
     f.fail("plane", "only 2-D scenes have a plane condition");
+  }
+  if (type == "drucker_prager") {
+    if (m.plane == PlaneCondition::stress) f.fail("plane", "Drucker-Prager plasticity needs plane strain");
+    s.plasticity = read_drucker_prager(f, m);
   }
   f.finish();
 }
@@ -140,11 +166,13 @@ Region read_region(Fields& f, const Scene& s) {
   return r;
 }
 
-void read_boundary(const std::vector<YAML::Node>& items, const std::string& source, Scene& s) {
+std::vector<BoundarySpec> read_boundary(const std::vector<YAML::Node>& items, const std::string& source,
+                                        const Scene& s, const std::string& key = "boundary") {
+  std::vector<BoundarySpec> out;
   for (std::size_t k = 0; k < items.size(); ++k) {
-    Fields f(items[k], "boundary[" + std::to_string(k) + "]", source);
+    Fields f(items[k], key + "[" + std::to_string(k) + "]", source);
     BoundarySpec b;
-    b.where = detail::where(source, items[k]) + "boundary[" + std::to_string(k) + "]";
+    b.where = detail::where(source, items[k]) + key + "[" + std::to_string(k) + "]";
     b.region = read_region(f, s);
     for (const auto& c : f.list("fix")) {
       const int a = c.IsScalar() ? axis_of(c.as<std::string>(), s.dim) : -1;
@@ -168,14 +196,35 @@ void read_boundary(const std::vector<YAML::Node>& items, const std::string& sour
     if ((b.traction || b.pressure) && !b.region.is_side)
       f.fail("region", "a traction or pressure acts on a side of the box (top, left, ...)");
     f.finish();
-    s.boundary.push_back(b);
+    out.push_back(b);
+  }
+  return out;
+}
+
+void read_stages(const std::vector<YAML::Node>& items, const std::string& source, Scene& s) {
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    const std::string key = "stages[" + std::to_string(k) + "]";
+    Fields f(items[k], key, source);
+    StageSpec st;
+    st.where = detail::where(source, items[k]) + key;
+    st.name = f.text("name", "stage " + std::to_string(k + 1));
+    st.steps = f.small_integer("steps", 1);
+    if (st.steps < 1) f.fail("steps", "must be at least 1");
+    st.boundary = read_boundary(f.list("boundary"), source, s, key + ".boundary");
+    f.finish();
+    s.stages.push_back(st);
   }
 }
 
 void read_solver(Fields f, Scene& s) {
   auto& v = s.solver;
-  v.type = f.text("type", "adr");
-  if (v.type != "adr" && v.type != "verlet" && v.type != "newton") f.fail("type", "must be adr, verlet or newton");
+  v.type = f.text("type", s.plasticity ? "lbc" : "adr");
+  if (v.type != "adr" && v.type != "verlet" && v.type != "newton" && v.type != "lbc")
+    f.fail("type", "must be adr, verlet, newton or lbc");
+  if (v.type == "verlet" && s.plasticity)
+    f.fail("type", "verlet is not available with a drucker_prager material (use lbc, adr or newton)");
+  if (v.type == "verlet" && !s.stages.empty()) f.fail("type", "verlet does not run load stages (use lbc, adr or newton)");
+  if (!s.stages.empty() && f.has("load_steps")) f.fail("load_steps", "with stages, each stage sets its steps");
   const bool newton = v.type == "newton";
   if (newton) v.tolerance = 1e-10, v.max_iterations = 50;
   v.tolerance = f.number("tolerance", v.tolerance);
@@ -208,7 +257,12 @@ void read_solver(Fields f, Scene& s) {
   if (!(v.step_tolerance > 0.0)) f.fail("step_tolerance", "must be positive");
   v.check = f.text("check", "none");
   if (v.check != "none" && v.check != "newton") f.fail("check", "must be none or newton");
-  if (v.check == "newton" && v.type != "adr") f.fail("check", "the Newton check compares static answers: it needs solver.type adr");
+  if (v.check == "newton" && v.type != "adr" && v.type != "lbc")
+    f.fail("check", "the Newton check compares static answers: it needs solver.type adr or lbc");
+  v.yield_tolerance = f.number("yield_tolerance", v.yield_tolerance);
+  if (!(v.yield_tolerance > 0.0)) f.fail("yield_tolerance", "must be positive");
+  v.max_rounds = f.small_integer("max_rounds", v.max_rounds);
+  if (v.max_rounds < 1) f.fail("max_rounds", "must be at least 1");
   if (newton && v.max_iterations > 1000000000) f.fail("max_iterations", "is out of range");
   f.finish();
 }
@@ -253,10 +307,13 @@ void read_probes(const std::vector<YAML::Node>& items, const std::string& source
       if (!ok.count(p.component) || (s.dim == 2 && p.component.find('z') != std::string::npos &&
                                      p.component != "zz"))
         f.fail("component", s.dim == 2 ? "must be xx, yy, zz or xy" : "must be xx, yy, zz, xy, yz or xz");
-    } else if (p.field == "von_mises") {
-      if (f.has("component")) f.fail("component", "a von_mises probe has no component");
+    } else if (p.field == "von_mises" || p.field == "mean_stress" || p.field == "equivalent_strain" ||
+               p.field == "eq_plastic_strain") {
+      if (f.has("component")) f.fail("component", "a " + p.field + " probe has no component");
+      if (p.field == "eq_plastic_strain" && !s.plasticity)
+        f.fail("field", "eq_plastic_strain needs a plastic material (material.type: drucker_prager)");
     } else {
-      f.fail("field", "must be displacement, stress or von_mises");
+      f.fail("field", "must be displacement, stress, von_mises, mean_stress, equivalent_strain or eq_plastic_strain");
     }
     f.finish();
     s.probes.push_back(p);
@@ -288,13 +345,24 @@ Scene parse_scene(const std::string& text, const std::string& source,
   read_material(top.map("material"), s);
   if (top.has("model")) read_model(top.map("model"), s);
   else top.mark("model");
-  read_boundary(top.list("boundary"), source, s);
+  s.boundary = read_boundary(top.list("boundary"), source, s);
+  read_stages(top.list("stages"), source, s);
   if (top.has("solver")) read_solver(top.map("solver"), s);
-  else top.mark("solver");
+  else top.mark("solver"), s.solver.type = s.plasticity ? "lbc" : "adr";
   if (top.has("output")) {
     Fields o = top.map("output");
     s.output.vtk_every = o.integer("vtk_every", 0);
     if (s.output.vtk_every < 0) o.fail("vtk_every", "must be zero or positive");
+    for (const auto& n : o.list("vtk_steps")) {
+      std::int64_t step = 0;
+      try {
+        step = n.as<std::int64_t>();
+      } catch (const YAML::Exception&) {
+        o.fail("vtk_steps", "must be a list of load step numbers");
+      }
+      if (step < 1) o.fail("vtk_steps", "load steps are counted from 1");
+      s.output.vtk_steps.push_back(step);
+    }
     o.finish();
   } else {
     top.mark("output");

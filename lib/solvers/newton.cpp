@@ -145,6 +145,7 @@ SolveReport solve_newton(CorrespondenceModel& model, const Loading& loading,
                     std::to_string(flag) + " (" + KINGetReturnFlagName(flag) + ")";
       break;
     }
+    if (opt.after_step) opt.after_step(step, u, iterations, rep.residual);
   }
   rep.converged = rep.failure.empty();
   if (progress) progress->finish();

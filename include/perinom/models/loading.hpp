@@ -2,6 +2,7 @@
 /// @file Boundary conditions reduced to what a solver applies: fixed degrees of freedom
 /// with prescribed values, and an external force vector, both at full load.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "perinom/core/types.hpp"
@@ -54,6 +55,14 @@ struct Loading {
   /// Zeros the constrained entries of r (a residual or a velocity).
   void zero_fixed(double* r) const;
   bool coupled_constraints() const { return !coupled.empty(); }
+};
+
+/// One stage of a load path: its loading (values as increments over the stage, forces as
+/// totals at its end; see begin_stage) applied in `steps` equal load steps.
+struct LoadStage {
+  std::string name;
+  int steps = 1;
+  Loading loading;
 };
 
 }  // namespace perinom

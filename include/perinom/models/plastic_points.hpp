@@ -53,9 +53,10 @@ class PlasticPoints {
   std::size_t flag_violations(double tolerance);
   /// Makes the kept trial states the committed ones.
   void commit();
-  /// Particles whose last commit was plastic (xi grew), and the flagged ones.
-  std::size_t plastic_in_last_commit() const { return plastic_last_; }
+  /// The flagged particles.
   std::size_t flagged() const;
+  /// Back to the virgin state: no stress, no plastic strain, no flag.
+  void reset();
 
   const std::vector<Point>& committed() const { return committed_; }
   const std::vector<Point>& trial() const { return trial_; }
@@ -73,7 +74,6 @@ class PlasticPoints {
   PlasticMode mode_ = PlasticMode::lbc;
   std::vector<Point> committed_, trial_;
   std::vector<std::uint8_t> flagged_;
-  std::size_t plastic_last_ = 0;
 };
 
 }  // namespace perinom

@@ -24,7 +24,8 @@ struct Problem {
   PointCloud cloud;
   std::size_t bonds = 0;
   std::unique_ptr<CorrespondenceModel> model;
-  Loading loading;
+  Loading loading;                 ///< the scene's `boundary` at solver.load_steps (single-stage solvers)
+  std::vector<LoadStage> stages;   ///< load-path scenes (Scene::load_path): one per stage
   std::vector<BoundProbe> probes;
 };
 
@@ -33,14 +34,21 @@ struct Problem {
 /// singular shape tensor.
 Problem build_problem(const Scene& scene, PhaseTimer* timer = nullptr);
 
-/// The fields probes read: displacement u (N x d), 3 x 3 stresses sigma (N x 9), and the
-/// displacement gradient H (N x d x d) for reconstructed point probes.
+/// The fields probes read: displacement u (N x d), 3 x 3 stresses sigma (N x 9), the
+/// displacement gradient H (N x d x d), and the committed plastic states (or nullptr).
 struct ProbeFields {
   const PointCloud& cloud;
   const std::vector<double>& u;
   const std::vector<double>& sigma;
   const std::vector<double>& H;
+  const PlasticPoints* plastic = nullptr;
 };
+
+/// Mean stress tr(sigma) / 3 of a 3 x 3 stress (Pa, tension positive), and the equivalent
+/// strain sqrt(2/3 e : e) of grad u (d x d; e the deviator of the 3 x 3 small strain, plane
+/// strain in 2-D).
+double mean_stress(const double* sigma3);
+double equivalent_strain(const double* H, int dim);
 
 /// The value of a probe's field at particle i (SI units).
 double probe_value(const ProbeSpec& spec, std::size_t i, const ProbeFields& f);

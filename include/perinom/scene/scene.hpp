@@ -9,6 +9,7 @@
 
 #include "perinom/geometry/lattice.hpp"
 #include "perinom/geometry/region.hpp"
+#include "perinom/materials/drucker_prager.hpp"
 #include "perinom/materials/linear_elastic.hpp"
 #include "perinom/operators/influence.hpp"
 
@@ -43,8 +44,17 @@ struct BoundarySpec {
   bool at_face = false;  ///< displacements prescribed at the box face, not at the particles
 };
 
+/// One stage of a load path (`stages:`): its own boundary conditions, added to the scene's
+/// `boundary` list, applied in `steps` load steps from where the previous stage ended.
+struct StageSpec {
+  std::string where;
+  std::string name;
+  int steps = 1;
+  std::vector<BoundarySpec> boundary;
+};
+
 struct SolverSpec {
-  std::string type = "adr";
+  std::string type = "adr";  ///< adr | verlet | newton | lbc
   double tolerance = 1e-8;
   double displacement_tolerance = 1e-8;
   std::int64_t max_iterations = 200000;
@@ -57,6 +67,8 @@ struct SolverSpec {
   bool line_search = true;    ///< Newton
   double step_tolerance = 1e-14;  ///< Newton: KINSOL's scaled step tolerance
   std::string check = "none"; ///< "newton": also solve with Newton and report the difference
+  double yield_tolerance = 1e-6;  ///< LBC: relative violation of the yield condition that flags
+  int max_rounds = 1000;          ///< LBC: balance-correction rounds per load step
 };
 
 struct ProbeSpec {
@@ -64,13 +76,16 @@ struct ProbeSpec {
   std::string name;
   bool is_line = false;
   std::array<double, 3> point{0, 0, 0}, from{0, 0, 0}, to{0, 0, 0};
-  std::string field = "displacement";  ///< displacement | stress | von_mises
+  /// displacement | stress | von_mises | mean_stress | equivalent_strain | eq_plastic_strain
+  std::string field = "displacement";
   std::string component = "x";         ///< x|y|z, or xx|yy|zz|xy|yz|xz for stress
   bool reconstruct = false;  ///< point displacement probes: u_i + (grad u)_i (x - x_i) at the point
 };
 
 struct OutputSpec {
-  std::int64_t vtk_every = 0;  ///< VTK snapshots every this many iterations; 0: the final state only
+  std::int64_t vtk_every = 0;  ///< VTK snapshots every this many iterations (load steps on a
+                               ///< load path); 0: the final state only
+  std::vector<std::int64_t> vtk_steps;  ///< load paths: snapshots after these load steps (counted over all stages)
 };
 
 struct Scene {
@@ -79,12 +94,18 @@ struct Scene {
   int dim = 2;
   BoxGeometry geometry;
   DiscretizationSpec discretization;
-  LinearElastic material;
+  LinearElastic material;  ///< the elastic moduli (of the plastic law too) and the density
+  std::optional<DruckerPrager> plasticity;  ///< material.type: drucker_prager
   ModelSpec model;
   std::vector<BoundarySpec> boundary;
+  std::vector<StageSpec> stages;  ///< empty: one stage of solver.load_steps steps
   SolverSpec solver;
   OutputSpec output;
   std::vector<ProbeSpec> probes;
+
+  /// Solved as a quasi-static load path (solvers/load_path.hpp): a plastic material,
+  /// stages, or solver.type lbc.
+  bool load_path() const { return plasticity.has_value() || !stages.empty() || solver.type == "lbc"; }
 };
 
 /// Reads and validates a scene file, after applying `--set dotted.key=value` overrides

@@ -1,6 +1,9 @@
 #pragma once
 /// @file Newton's method on the assembled Jacobian: SUNDIALS KINSOL with the KLU sparse
 /// direct solver (THEORY sec. 8), the design's independent check of the explicit solvers.
+#include <functional>
+#include <vector>
+
 #include "perinom/core/progress.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/models/loading.hpp"
@@ -14,6 +17,9 @@ struct NewtonOptions {
   int max_iterations = 50;        ///< per load step
   int load_steps = 1;
   bool line_search = true;
+  /// Runs after each converged load step with its number, the Newton iterations it took and
+  /// its relative residual (the plastic path commits here).
+  std::function<void(int step, const std::vector<double>& u, long iterations, double residual)> after_step;
 };
 
 /// Solves the static problem in load steps s = 1/n ... 1. The Jacobian's pattern is built

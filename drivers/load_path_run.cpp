@@ -1,0 +1,157 @@
+#include "load_path_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+#include "perinom/core/timer.hpp"
+#include "perinom/io/csv_writer.hpp"
+#include "snapshot.hpp"
+#include "terminal_progress.hpp"
+
+namespace perinom::cli {
+namespace {
+
+constexpr int kProbeColumns = 5;  // value, von_mises, mean_stress, equivalent_strain, eq_plastic_strain
+constexpr int kStepColumns = 3;   // stage, step, load_factor
+
+std::vector<const BoundProbe*> point_probes(const Problem& p) {
+  std::vector<const BoundProbe*> out;
+  for (const auto& probe : p.probes)
+    if (!probe.spec.is_line) out.push_back(&probe);
+  return out;
+}
+
+}  // namespace
+
+LoadPathOptions load_path_options(const SolverSpec& s) {
+  LoadPathOptions o;
+  parse_load_path_scheme(s.type, o.scheme);
+  o.adr.tolerance = s.tolerance;
+  o.adr.displacement_tolerance = s.displacement_tolerance;
+  o.adr.max_iterations = s.max_iterations;
+  o.newton.line_search = s.line_search;
+  o.newton.step_tolerance = s.step_tolerance;
+  if (s.type == "newton") o.newton.tolerance = s.tolerance, o.newton.max_iterations = static_cast<int>(s.max_iterations);
+  o.yield_tolerance = s.yield_tolerance;
+  o.max_rounds = s.max_rounds;
+  return o;
+}
+
+void ProbeHistory::record(const Problem& p, const LoadStepRecord& r, const std::vector<double>& u) {
+  const auto probes = point_probes(p);
+  if (probes.empty()) return;
+  const ProbeState state(p, u);
+  const ProbeFields f = state.fields(p, u);
+  std::vector<double> row = {double(r.stage), double(r.step), r.load_factor};
+  const int d = p.cloud.dim;
+  for (const BoundProbe* probe : probes) {
+    const std::size_t i = probe->particles.at(0);
+    row.push_back(point_probe_value(*probe, f));
+    row.push_back(von_mises(state.sigma.data() + i * 9));
+    row.push_back(mean_stress(state.sigma.data() + i * 9));
+    row.push_back(equivalent_strain(state.H.data() + i * d * d, d));
+    row.push_back(f.plastic ? f.plastic->committed()[i].law.xi : 0.0);
+  }
+  rows.push_back(row);
+}
+
+void ProbeHistory::write(const Problem& p, const std::string& dir) const {
+  const auto probes = point_probes(p);
+  for (std::size_t k = 0; k < probes.size(); ++k) {
+    io::CsvWriter csv(dir + "/probe_" + probes[k]->spec.name + "_history.csv");
+    csv.header({"stage", "step", "load_factor", probes[k]->spec.field, "von_mises", "mean_stress",
+                "equivalent_strain", "eq_plastic_strain"});
+    for (const auto& row : rows) {
+      std::vector<double> out(row.begin(), row.begin() + kStepColumns);
+      const auto first = row.begin() + kStepColumns + k * kProbeColumns;
+      out.insert(out.end(), first, first + kProbeColumns);
+      csv.row(out);
+    }
+    csv.close();
+  }
+}
+
+SolveReport run_load_path(Problem& p, std::vector<double>& u, io::PvdSeries& series, ProbeHistory& probes,
+                          std::int64_t& last_snapshot) {
+  const Scene& scene = p.scene;
+  const LoadPathOptions opt = load_path_options(scene.solver);
+  int total = 0;
+  for (const auto& st : p.stages) total += st.steps;
+  std::printf("perinom: %zu stage(s), %d load steps, %s\n", p.stages.size(), total,
+              opt.scheme == LoadPathScheme::lbc ? "loading-balance-correction"
+              : opt.scheme == LoadPathScheme::newton ? "Newton with the consistent tangent"
+                                                     : "plain ADR, plastic update in every iteration");
+  std::printf("  %5s %5s %6s %10s %6s %8s %8s %8s %10s %8s\n", "stage", "step", "factor", "iterations",
+              "rounds", "flagged", "yielding", "plastic", "residual", "seconds");
+  std::int64_t done = 0;
+  auto after_step = [&](const LoadStepRecord& r, const std::vector<double>& u) {
+    ++done;
+    probes.record(p, r, u);
+    std::printf("  %5d %5d %6.3f %10lld %6d %8zu %8zu %8zu %10.3e %8.3f\n", r.stage, r.step, r.load_factor,
+                static_cast<long long>(r.iterations), r.rounds, r.newly_flagged, r.yielding, r.plastic,
+                r.residual, r.seconds);
+    std::fflush(stdout);
+    const auto& want = scene.output.vtk_steps;
+    const bool listed = std::find(want.begin(), want.end(), done) != want.end();
+    const bool periodic = scene.output.vtk_every > 0 && done % scene.output.vtk_every == 0;
+    if (listed || periodic) {
+      add_snapshot(series, double(done), p, u);
+      last_snapshot = done;
+    }
+  };
+  return solve_load_path(*p.model, p.stages, opt, u, nullptr, after_step);
+}
+
+io::Json load_path_newton_check(Problem& p, const std::vector<double>& u, const ProbeHistory& first) {
+  PlasticPoints* plastic = p.model->plastic();
+  const std::optional<PlasticPoints> saved = plastic ? std::optional<PlasticPoints>(*plastic) : std::nullopt;
+  if (plastic) plastic->reset();
+  LoadPathOptions opt = load_path_options(p.scene.solver);
+  opt.scheme = LoadPathScheme::newton;
+  opt.newton = NewtonOptions{};
+  ProbeHistory second;
+  std::vector<double> un(p.model->dofs(), 0.0);
+  std::vector<LoadStage> stages = p.stages;
+  const double t0 = wall_seconds();
+  const SolveReport rep = solve_load_path(*p.model, stages, opt, un, nullptr,
+                                          [&](const LoadStepRecord& r, const std::vector<double>& v) {
+                                            second.record(p, r, v);
+                                          });
+  const double seconds = wall_seconds() - t0;
+  std::vector<double> s, sn;
+  p.model->stress3(un.data(), sn);
+  if (plastic) *plastic = *saved;
+  p.model->stress3(u.data(), s);
+  auto relative = [](const std::vector<double>& a, const std::vector<double>& b) {
+    double d2 = 0, b2 = 0;
+    for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) d2 += (a[k] - b[k]) * (a[k] - b[k]), b2 += b[k] * b[k];
+    return b2 > 0 ? std::sqrt(d2 / b2) : std::sqrt(d2);
+  };
+  // Per probe: max over steps |a - b| over max over steps |b|, for value, von Mises and xi.
+  double probes_max = 0.0;
+  const std::size_t columns = first.rows.empty() ? 0 : first.rows[0].size();
+  for (std::size_t c = kStepColumns; c < columns; ++c) {
+    double dmax = 0.0, bmax = 0.0;
+    for (std::size_t r = 0; r < std::min(first.rows.size(), second.rows.size()); ++r) {
+      dmax = std::max(dmax, std::abs(first.rows[r][c] - second.rows[r][c]));
+      bmax = std::max(bmax, std::abs(second.rows[r][c]));
+    }
+    if (bmax > 0.0) probes_max = std::max(probes_max, dmax / bmax);
+  }
+  io::Json j = io::Json::object();
+  j["displacement_relative_l2"] = relative(u, un);
+  j["stress_relative_l2"] = relative(s, sn);
+  j["probe_histories_relative_max"] = probes_max;
+  j["newton_iterations"] = static_cast<long long>(rep.iterations);
+  j["newton_converged"] = rep.converged;
+  j["newton_seconds"] = seconds;
+  if (!rep.failure.empty()) j["newton_error"] = rep.failure;
+  std::printf("perinom: Newton check: displacement differs by %.3e, stress by %.3e (relative L2), probe "
+              "histories by %.3e (relative max over steps); Newton: %lld iterations, %.3f s\n",
+              relative(u, un), relative(s, sn), probes_max, static_cast<long long>(rep.iterations), seconds);
+  return j;
+}
+
+}  // namespace perinom::cli

@@ -1,0 +1,49 @@
+#include "snapshot.hpp"
+
+namespace perinom::cli {
+
+void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const std::vector<double>& u) {
+  const int d = p.cloud.dim;
+  const std::size_t n = p.cloud.size();
+  std::vector<double> u3(n * 3, 0.0), sigma, vm(n), mean(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = 0; a < d; ++a) u3[i * 3 + a] = u[i * d + a];
+  p.model->stress3(u.data(), sigma);
+  for (std::size_t i = 0; i < n; ++i) {
+    vm[i] = von_mises(sigma.data() + i * 9);
+    mean[i] = mean_stress(sigma.data() + i * 9);
+  }
+  std::vector<io::PointField> fields = {{"displacement", 3, u3.data()}, {"stress", 9, sigma.data()},
+                                        {"von_mises", 1, vm.data()},    {"mean_stress", 1, mean.data()},
+                                        {"volume", 1, p.cloud.volume.data()}};
+  // Improved and strong formulations: subregion 1 = E (strong form), 0 = D (weak form).
+  std::vector<double> subregion, surface;
+  const Surface& s = p.model->surface();
+  if (!s.in_band.empty()) {
+    subregion.assign(s.in_band.begin(), s.in_band.end());
+    surface.assign(s.on_surface.begin(), s.on_surface.end());
+    fields.push_back({"subregion_E", 1, subregion.data()});
+    fields.push_back({"surface", 1, surface.data()});
+  }
+  std::vector<double> xi, eps_p, yielded;
+  if (const PlasticPoints* plastic = p.model->plastic()) {
+    for (const auto& point : plastic->committed()) {
+      xi.push_back(point.law.xi);
+      yielded.push_back(point.law.xi > 0.0 ? 1.0 : 0.0);
+      eps_p.insert(eps_p.end(), point.law.eps_p, point.law.eps_p + 9);
+    }
+    fields.push_back({"eq_plastic_strain", 1, xi.data()});
+    fields.push_back({"plastic_strain", 9, eps_p.data()});
+    fields.push_back({"yielded", 1, yielded.data()});
+  }
+  series.add(time, d, n, p.cloud.x.data(), fields);
+  series.write();
+}
+
+ProbeState::ProbeState(const Problem& p, const std::vector<double>& u)
+    : H(p.cloud.size() * p.cloud.dim * p.cloud.dim) {
+  p.model->stress3(u.data(), sigma);
+  p.model->gradient(u.data(), H.data());
+}
+
+}  // namespace perinom::cli

@@ -1,0 +1,27 @@
+#pragma once
+// What `perinom run` writes of a state: VTK point data, probe values.
+#include <string>
+#include <vector>
+
+#include "perinom/io/json_writer.hpp"
+#include "perinom/io/vtk_writer.hpp"
+#include "perinom/scene/problem.hpp"
+
+namespace perinom::cli {
+
+/// Adds one snapshot at `time` to the series and rewrites the .pvd: displacement, stress,
+/// von Mises, mean stress, volume; the improved formulation's subregions; with plasticity the
+/// committed equivalent plastic strain, plastic strain tensor and yield flag (1: the particle
+/// has yielded, xi > 0).
+void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const std::vector<double>& u);
+
+/// The probes' fields at u (stress, grad u and the committed plastic states).
+struct ProbeState {
+  std::vector<double> sigma, H;
+  ProbeState(const Problem& p, const std::vector<double>& u);
+  ProbeFields fields(const Problem& p, const std::vector<double>& u) const {
+    return {p.cloud, u, sigma, H, p.model->plastic()};
+  }
+};
+
+}  // namespace perinom::cli

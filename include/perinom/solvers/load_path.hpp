@@ -1,0 +1,58 @@
+#pragma once
+/// @file Quasi-static load paths for plastic (and elastic) scenes: stages of load steps,
+/// each solved by loading-balance-correction, by plain ADR with the plastic update in
+/// every iteration, or by Newton with the consistent tangent (THEORY sec. 8).
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "perinom/core/progress.hpp"
+#include "perinom/models/correspondence.hpp"
+#include "perinom/models/loading.hpp"
+#include "perinom/solvers/adr.hpp"
+#include "perinom/solvers/newton.hpp"
+
+namespace perinom {
+
+/// lbc: balance by ADR with trial stresses from the committed state, correction flags the
+///      particles whose trial leaves the yield surface, commit when no new one is flagged;
+/// every_iteration: ADR with the return map committed after every iteration (the explicit
+///      scheme that yields falsely; for comparison);
+/// newton: KINSOL + KLU on each load step with the consistent tangent, commit after it.
+enum class LoadPathScheme { lbc, every_iteration, newton };
+/// Parses "lbc", "adr", "newton"; false if unknown.
+bool parse_load_path_scheme(const std::string& solver_type, LoadPathScheme& s);
+
+struct LoadPathOptions {
+  LoadPathScheme scheme = LoadPathScheme::lbc;
+  AdrOptions adr;          ///< tolerances; max_iterations per balance (per load step for every_iteration)
+  NewtonOptions newton;    ///< tolerances (load_steps and after_step are set per stage)
+  double yield_tolerance = 1e-6;  ///< LBC: f > tol * m (A I1 + B) flags a particle
+  int max_rounds = 1000;          ///< LBC: balance-correction rounds per load step
+};
+
+/// What one load step took.
+struct LoadStepRecord {
+  int stage = 0, step = 0;            ///< from 1
+  double load_factor = 0.0;           ///< within the stage
+  std::int64_t iterations = 0;        ///< ADR iterations (all rounds) or Newton iterations
+  int rounds = 0;                     ///< LBC balance-correction rounds (1: none flagged)
+  std::size_t newly_flagged = 0;      ///< LBC: particles flagged in this step
+  std::size_t yielding = 0;           ///< particles whose xi grew in this step
+  std::size_t plastic = 0;            ///< particles with xi > 0
+  double residual = 0.0;              ///< relative residual at the end of the step
+  double seconds = 0.0;
+};
+
+/// Runs the stages in order, each from where the previous ended (Loading::begin_stage).
+/// after_step (if set) sees every committed step. report.history has one row per load step
+/// (the LoadStepRecord fields); report.iterations counts all ADR or Newton iterations.
+/// Stops at the first step that fails, with report.failure saying where.
+SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& stages,
+                            const LoadPathOptions& options, std::vector<double>& u,
+                            Progress* progress = nullptr,
+                            const std::function<void(const LoadStepRecord&, const std::vector<double>&)>&
+                                after_step = {});
+
+}  // namespace perinom
