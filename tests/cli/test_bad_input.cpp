@@ -383,3 +383,48 @@ TEST_CASE("material-point: a test outside Table 2 is bad input", "[cli]") {
   ScratchDir dir;
   require_one_clear_error(perinom(dir, "material-point --test 9"), {"--test"});
 }
+
+namespace {
+/// The tiny scene with a Drucker-Prager material whose key `key` reads `value`.
+std::string plastic_scene(const std::string& key, const std::string& value) {
+  std::string dp = "  type: drucker_prager\n";
+  for (const auto& [k, v] : {std::pair<std::string, std::string>{"friction_angle", "35.0"}, {"cohesion", "6.0e4"},
+                             {"m0", "0.2"}, {"d0", "0.0"}, {"h", "0.0"}})
+    dp += "  " + k + ": " + (k == key ? value : v) + "\n";
+  std::string s = with(tiny_scene, "  type: linear_elastic\n", dp);
+  return with(s, "  type: adr\n", "  type: lbc\n");
+}
+}  // namespace
+
+TEST_CASE("the Drucker-Prager constants are checked, each by its key", "[cli]") {
+  const struct {
+    const char* key;
+    const char* value;
+    const char* message;
+  } cases[] = {{"friction_angle", "90.0", "material.friction_angle: must lie in [0, 90) degrees"},
+               {"friction_angle", "-1.0", "material.friction_angle: must lie in [0, 90) degrees"},
+               {"cohesion", "-1.0", "material.cohesion: must be zero or positive"},
+               {"d0", "1.5", "material.d0: must lie in [0, 1]"},
+               {"d0", "-0.1", "material.d0: must lie in [0, 1]"},
+               {"h", "-1.0", "material.h: must be zero or positive"},
+               {"m0", "0.0", "material.m0: must lie in (0, 1]"},
+               {"m0", "1.5", "material.m0: must lie in (0, 1]"}};
+  for (const auto& c : cases) {
+    DYNAMIC_SECTION(c.key << " = " << c.value) {
+      const std::string s = plastic_scene(c.key, c.value);
+      require_rejected(s, {at_line(s, std::string(c.key) + ": " + c.value, c.message)});
+    }
+  }
+}
+
+TEST_CASE("a valid Drucker-Prager scene passes the check, and Verlet is refused with it", "[cli]") {
+  {
+    ScratchDir dir;
+    std::ofstream(dir.path / "scene.yaml") << plastic_scene("h", "0.0");
+    const Outcome o = perinom(dir, "check scene.yaml");
+    INFO("stderr: " << o.err);
+    CHECK(o.exit_code == 0);
+  }
+  const std::string s = with(plastic_scene("h", "0.0"), "  type: lbc\n", "  type: verlet\n");
+  require_rejected(s, {at_line(s, "type: verlet", "solver.type: verlet is not available with a drucker_prager material")});
+}
