@@ -73,7 +73,7 @@ void ProbeHistory::write(const Problem& p, const std::string& dir) const {
   }
 }
 
-SolveReport run_load_path(Problem& p, std::vector<double>& u, io::PvdSeries& series, ProbeHistory& probes,
+SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double>& u, io::PvdSeries& series, ProbeHistory& probes,
                           std::int64_t& last_snapshot) {
   const Scene& scene = p.scene;
   const LoadPathOptions opt = load_path_options(scene.solver);
@@ -97,7 +97,7 @@ SolveReport run_load_path(Problem& p, std::vector<double>& u, io::PvdSeries& ser
     const bool listed = std::find(want.begin(), want.end(), done) != want.end();
     const bool periodic = scene.output.vtk_every > 0 && done % scene.output.vtk_every == 0;
     if (listed || periodic) {
-      add_snapshot(series, double(done), p, u);
+      add_snapshot(series, double(done), p, u, dir);
       last_snapshot = done;
     }
   };

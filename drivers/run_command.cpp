@@ -164,7 +164,7 @@ int run(const Options& opt) {
   const bool dynamic = scene.solver.type == "verlet";
   Observer observe{scene.output.vtk_every,
                    [&](std::int64_t it, double t, const std::vector<double>& state) {
-                     add_snapshot(series, dynamic ? t : double(it), p, state);
+                     add_snapshot(series, dynamic ? t : double(it), p, state, dir);
                      last_snapshot = it;
                    }};
   TerminalProgress progress(scene.solver.type.c_str());
@@ -173,7 +173,7 @@ int run(const Options& opt) {
   timer.start("solve");
   {
     if (scene.load_path()) {
-      rep = run_load_path(p, u, series, probe_history, last_snapshot);
+      rep = run_load_path(p, dir, u, series, probe_history, last_snapshot);
     } else if (scene.solver.type == "adr") {
       AdrOptions o;
       o.tolerance = scene.solver.tolerance;
@@ -198,10 +198,10 @@ int run(const Options& opt) {
   timer.start("output");
   const std::int64_t steps_done = static_cast<std::int64_t>(rep.history.rows());
   if (scene.load_path()) {
-    if (last_snapshot != steps_done || !failure.empty()) add_snapshot(series, double(steps_done), p, u);
+    if (last_snapshot != steps_done || !failure.empty()) add_snapshot(series, double(steps_done), p, u, dir);
     probe_history.write(p, dir);
   } else if (last_snapshot != rep.iterations || !failure.empty()) {
-    add_snapshot(series, dynamic ? rep.end_time : double(rep.iterations), p, u);
+    add_snapshot(series, dynamic ? rep.end_time : double(rep.iterations), p, u, dir);
   }
   write_history(dir + (scene.load_path() ? "/load_steps.csv" : "/history.csv"), rep.history);
   Json summary = Json::object();

@@ -1,8 +1,34 @@
 #include "snapshot.hpp"
 
+#include "perinom/io/csv_writer.hpp"
+
 namespace perinom::cli {
 
-void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const std::vector<double>& u) {
+namespace {
+
+/// The scalar and vector fields of a snapshot as CSV: x, y, z, then each field's components.
+void write_csv(const std::string& path, const Problem& p, const std::vector<io::PointField>& fields) {
+  std::vector<std::string> names = {"x", "y", "z"};
+  for (const auto& f : fields)
+    for (int c = 0; c < f.components; ++c)
+      names.push_back(f.components == 1 ? f.name : f.name + "_" + std::to_string(c));
+  io::CsvWriter csv(path);
+  csv.header(names);
+  const int d = p.cloud.dim;
+  std::vector<double> row;
+  for (std::size_t i = 0; i < p.cloud.size(); ++i) {
+    row.assign(3, 0.0);
+    for (int a = 0; a < d; ++a) row[a] = p.cloud.x[i * d + a];
+    for (const auto& f : fields) row.insert(row.end(), f.data + i * f.components, f.data + (i + 1) * f.components);
+    csv.row(row);
+  }
+  csv.close();
+}
+
+}  // namespace
+
+void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const std::vector<double>& u,
+                  const std::string& dir) {
   const int d = p.cloud.dim;
   const std::size_t n = p.cloud.size();
   std::vector<double> u3(n * 3, 0.0), sigma, vm(n), mean(n);
@@ -36,8 +62,10 @@ void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const st
     fields.push_back({"plastic_strain", 9, eps_p.data()});
     fields.push_back({"yielded", 1, yielded.data()});
   }
-  series.add(time, d, n, p.cloud.x.data(), fields);
+  const std::string file = series.add(time, d, n, p.cloud.x.data(), fields);
   series.write();
+  if (p.scene.output.csv && !dir.empty())
+    write_csv(dir + "/" + file.substr(0, file.size() - 4) + ".csv", p, fields);
 }
 
 ProbeState::ProbeState(const Problem& p, const std::vector<double>& u)

@@ -12,8 +12,10 @@ namespace perinom::cli {
 /// Adds one snapshot at `time` to the series and rewrites the .pvd: displacement, stress,
 /// von Mises, mean stress, volume; the improved formulation's subregions; with plasticity the
 /// committed equivalent plastic strain, plastic strain tensor and yield flag (1: the particle
-/// has yielded, xi > 0).
-void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const std::vector<double>& u);
+/// has yielded, xi > 0). With output.csv the same point data also go to
+/// dir/NAME_<index>.csv (the .vtu's name with .csv), one row per particle, for scripts.
+void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const std::vector<double>& u,
+                  const std::string& dir = "");
 
 /// The probes' fields at u (stress, grad u and the committed plastic states).
 struct ProbeState {

@@ -363,6 +363,14 @@ Scene parse_scene(const std::string& text, const std::string& source,
       if (step < 1) o.fail("vtk_steps", "load steps are counted from 1");
       s.output.vtk_steps.push_back(step);
     }
+    if (o.has("csv")) {
+      o.mark("csv");
+      try {
+        s.output.csv = o.node("csv").as<bool>();
+      } catch (const YAML::Exception&) {
+        o.fail("csv", "must be true or false");
+      }
+    }
     o.finish();
   } else {
     top.mark("output");

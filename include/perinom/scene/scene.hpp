@@ -86,6 +86,7 @@ struct OutputSpec {
   std::int64_t vtk_every = 0;  ///< VTK snapshots every this many iterations (load steps on a
                                ///< load path); 0: the final state only
   std::vector<std::int64_t> vtk_steps;  ///< load paths: snapshots after these load steps (counted over all stages)
+  bool csv = false;  ///< each snapshot's point data also as CSV
 };
 
 struct Scene {
