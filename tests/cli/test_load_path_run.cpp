@@ -1,0 +1,65 @@
+// `perinom run` on a plastic scene: the step table's files, the probe histories, the plastic
+// VTK fields and CSV snapshots, and the Newton check of a load path.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::size_t lines(const fs::path& p) {
+  const std::string s = slurp(p);
+  return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
+}
+
+}  // namespace
+
+TEST_CASE("a plastic scene writes its step table, probe histories and plastic fields", "[cli][load_path]") {
+  const fs::path d = fs::temp_directory_path() / "perinom_load_path_run";
+  fs::remove_all(d);
+  fs::create_directories(d);
+  const std::string cmd = "cd '" + d.string() + "' && '" PERINOM_EXE "' run '" PERINOM_SOURCE_DIR
+                          "/examples/biaxial_compression.yaml' --out out --set stages.0.steps=5 --set "
+                          "stages.1.steps=5 --set solver.check=newton --set output.csv=true --set output.vtk_every=5 --set material.h=50"
+                          " >out.txt 2>err.txt";
+  const int status = std::system(cmd.c_str());
+  REQUIRE(WIFEXITED(status));
+  INFO(slurp(d / "err.txt"));
+  REQUIRE(WEXITSTATUS(status) == 0);
+  const fs::path out = d / "out";
+  CHECK(lines(out / "load_steps.csv") == 1 + 10);
+  CHECK(lines(out / "probe_center_von_mises_history.csv") == 1 + 10);
+  CHECK(lines(out / "probe_center_eq_plastic_strain_history.csv") == 1 + 10);
+  const std::string summary = slurp(out / "summary.json");
+  CHECK(summary.find("\"load_steps\": 10") != std::string::npos);
+  CHECK(summary.find("\"particles_yielded\": 400") != std::string::npos);
+  CHECK(summary.find("\"probe_histories_relative_max\"") != std::string::npos);
+  CHECK(summary.find("\"newton_converged\": true") != std::string::npos);
+  // The VTK point data of a plastic scene, and the same as CSV (snapshots after steps 5, 10).
+  const std::string vtu = slurp(out / "biaxial_compression_000000.vtu");
+  for (const char* field : {"eq_plastic_strain", "plastic_strain", "yielded", "mean_stress", "von_mises"}) {
+    INFO(field);
+    CHECK(vtu.find(std::string("Name=\"") + field + "\"") != std::string::npos);
+  }
+  const std::string csv = slurp(out / "biaxial_compression_000001.csv");
+  CHECK(csv.rfind("x,y,z,displacement_0", 0) == 0);
+  CHECK(csv.find("eq_plastic_strain") != std::string::npos);
+  CHECK(lines(out / "biaxial_compression_000001.csv") == 1 + 400);
+  // The step table on stdout names the columns.
+  CHECK(slurp(d / "out.txt").find("rounds  flagged yielding") != std::string::npos);
+  fs::remove_all(d);
+}
