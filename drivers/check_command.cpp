@@ -8,6 +8,27 @@
 #include "perinom/solvers/jacobian.hpp"
 
 namespace perinom::cli {
+namespace {
+
+const char* support_name(EdgeSupport e) {
+  return e == EdgeSupport::clamped ? "clamped" : e == EdgeSupport::simply_supported ? "simply supported" : "free";
+}
+
+/// The plate's lines of the plan: rigidity, edges, ghosts.
+void print_plate(const Problem& p) {
+  const PlateCloud& c = p.plate->plate();
+  std::printf("  model           thin_plate, D0 = %.6g N m, thickness %g m, stabilization C_hg = %g\n",
+              p.plate->rigidity(), p.scene.geometry.thickness, p.scene.model.stabilization);
+  std::printf("  plate nodes     %ld x %ld (on the edges), %zu ghost nodes outside the supported edges\n",
+              c.nodes[0], c.nodes[1], c.image.size());
+  std::vector<EdgeSupport> e(4, EdgeSupport::free);
+  for (const auto& b : p.scene.boundary)
+    if (b.support) e[b.region.side.axis * 2 + (b.region.side.at_max ? 1 : 0)] = *b.support;
+  std::printf("  edges           left %s, right %s, bottom %s, top %s\n", support_name(e[0]), support_name(e[1]),
+              support_name(e[2]), support_name(e[3]));
+}
+
+}  // namespace
 
 int check(const Options& opt) {
   if (opt.positional.size() != 1) throw InputError("check needs exactly one scene file");
@@ -17,12 +38,13 @@ int check(const Options& opt) {
   const auto mb = [](std::size_t b) { return b / 1048576.0; };
   std::printf("scene %s (%s): valid\n", scene.name.c_str(), scene.source.c_str());
   std::printf("  dimension       %d%s\n", scene.dim,
-              scene.dim == 2 ? (scene.material.plane == PlaneCondition::strain ? ", plane strain" : ", plane stress") : "");
+              p.plate ? ", thin plate" : scene.dim == 2 ? (scene.material.plane == PlaneCondition::strain ? ", plane strain" : ", plane stress") : "");
   std::printf("  particles       %zu\n", p.cloud.size());
   std::printf("  bonds           %zu (%.1f per particle)\n", p.bonds, double(p.bonds) / p.cloud.size());
-  std::printf("  model           %s, %s formulation, stabilization C_hg = %g\n",
-              scene.model.type.c_str(), scene.model.formulation.c_str(), scene.model.stabilization);
-  if (p.model->formulation() != Formulation::classical)
+  if (p.plate) print_plate(p);
+  else std::printf("  model           %s, %s formulation, stabilization C_hg = %g\n",
+                   scene.model.type.c_str(), scene.model.formulation.c_str(), scene.model.stabilization);
+  if (p.model && p.model->formulation() != Formulation::classical)
     std::printf("  subregions      E (strong form, within 2 delta of a surface): %zu particles, "
                 "D (weak form): %zu, surface particles: %zu\n",
                 p.model->surface().band.size(), p.model->surface().interior.size(),
@@ -33,14 +55,15 @@ int check(const Options& opt) {
   std::printf("  solver          %s\n", scene.solver.type.c_str());
   std::printf("  assembled operators and fields:\n");
   std::size_t total = 0;
-  for (const auto& m : p.model->memory()) {
+  const Model& model = p.physics();
+  for (const auto& m : model.memory()) {
     std::printf("    %-30s %10.2f MiB  (%.1f bytes per bond)\n", m.first.c_str(), mb(m.second),
                 double(m.second) / p.bonds);
     total += m.second;
   }
   std::printf("    %-30s %10.2f MiB\n", "solver state (u, v, f, ...)",
-              mb(p.model->dofs() * 6 * sizeof(double)));
-  total += p.model->dofs() * 6 * sizeof(double);
+              mb(model.dofs() * 6 * sizeof(double)));
+  total += model.dofs() * 6 * sizeof(double);
   const bool newton = scene.solver.type == "newton" || scene.solver.check == "newton";
   if (newton) {
     // The Jacobian's pattern, as the Newton solver will build it (values included).
@@ -51,9 +74,14 @@ int check(const Options& opt) {
                 "Newton Jacobian (CSR, 64-bit)", mb(bytes), system.jacobian().col.size(), "");
     total += bytes;
   }
-  std::printf("  not assembled: Hessian (no second-order model)%s%s\n",
-              newton ? "" : ", Newton Jacobian (no newton solver)",
-              scene.model.stabilization > 0.0 ? "" : ", stabilization S (C_hg = 0)");
+  if (p.plate)
+    std::printf("  not assembled: gradient operator G and stabilization S of elasticity (no correspondence "
+                "model), Newton Jacobian (no plate tangent solver)%s\n",
+                scene.model.stabilization > 0.0 ? "" : ", plate stabilization (C_hg = 0)");
+  else
+    std::printf("  not assembled: Hessian (no second-order model)%s%s\n",
+                newton ? "" : ", Newton Jacobian (no newton solver)",
+                scene.model.stabilization > 0.0 ? "" : ", stabilization S (C_hg = 0)");
   std::printf("  total           %.2f MiB (%.1f bytes per bond)\n", mb(total), double(total) / p.bonds);
   for (const auto& probe : p.probes)
     std::printf("  probe %-20s %s, %zu particle(s)\n", probe.spec.name.c_str(),

@@ -17,6 +17,7 @@
 #include "perinom/solvers/newton.hpp"
 #include "perinom/solvers/verlet.hpp"
 #include "load_path_run.hpp"
+#include "plate_output.hpp"
 #include "snapshot.hpp"
 #include "terminal_progress.hpp"
 
@@ -47,6 +48,7 @@ void write_history(const std::string& path, const History& h) {
 /// Probe values into the summary; line probes also into probe_NAME.csv. Prints the point
 /// probes' values.
 Json probe_results(const Problem& p, const std::vector<double>& u, const std::string& dir) {
+  if (p.plate) return plate_probe_results(p, u, dir);
   const int d = p.cloud.dim;
   const ProbeState state(p, u);
   const std::vector<double>& sigma = state.sigma;
@@ -158,7 +160,7 @@ int run(const Options& opt) {
   std::fflush(stdout);
 
   io::PvdSeries series(dir, scene.name);
-  std::vector<double> u(p.model->dofs(), 0.0), v;
+  std::vector<double> u(p.physics().dofs(), 0.0), v;
   std::int64_t last_snapshot = -1;
   // ADR snapshots are stamped with the iteration, Verlet snapshots with the time (s).
   const bool dynamic = scene.solver.type == "verlet";
@@ -181,7 +183,7 @@ int run(const Options& opt) {
       o.max_iterations = scene.solver.max_iterations;
       o.load_steps = scene.solver.load_steps;
       o.history_every = scene.solver.history_every;
-      rep = solve_adr(*p.model, p.loading, o, u, &progress, observe);
+      rep = solve_adr(p.physics(), p.loading, o, u, &progress, observe);
     } else if (scene.solver.type == "newton") {
       rep = solve_newton(*p.model, p.loading, newton_options(scene.solver), u, &progress);
     } else {
@@ -191,7 +193,7 @@ int run(const Options& opt) {
       o.steps = scene.solver.steps;
       o.ramp_time = scene.solver.ramp_time;
       o.history_every = scene.solver.history_every;
-      rep = solve_verlet(*p.model, p.loading, o, u, v, &progress, observe);
+      rep = solve_verlet(p.physics(), p.loading, o, u, v, &progress, observe);
     }
   }
   const std::string& failure = rep.failure;
@@ -229,7 +231,7 @@ int run(const Options& opt) {
     summary["check"] = scene.load_path() ? load_path_newton_check(p, u, probe_history) : newton_check(p, u);
     timer.start("output");
   }
-  if (const PlasticPoints* plastic = p.model->plastic()) summary["plasticity"] = plastic_summary(*plastic);
+  if (const PlasticPoints* plastic = p.model ? p.model->plastic() : nullptr) summary["plasticity"] = plastic_summary(*plastic);
   summary["probes"] = probe_results(p, u, dir);
   timer.stop();
   Json wall = Json::object();

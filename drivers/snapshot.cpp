@@ -1,6 +1,7 @@
 #include "snapshot.hpp"
 
 #include "perinom/io/csv_writer.hpp"
+#include "plate_output.hpp"
 
 namespace perinom::cli {
 
@@ -30,6 +31,14 @@ void write_csv(const std::string& path, const Problem& p, const std::vector<io::
 void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const std::vector<double>& u,
                   const std::string& dir) {
   const int d = p.cloud.dim;
+  if (p.plate) {
+    const PlateFields plate(p, u);
+    const std::vector<io::PointField> fields = plate.list(p, u);
+    const std::string file = series.add(time, d, p.cloud.size(), p.cloud.x.data(), fields);
+    series.write();
+    if (p.scene.output.csv && !dir.empty()) write_csv(dir + "/" + file.substr(0, file.size() - 4) + ".csv", p, fields);
+    return;
+  }
   const std::size_t n = p.cloud.size();
   std::vector<double> u3(n * 3, 0.0), sigma, vm(n), mean(n);
   for (std::size_t i = 0; i < n; ++i)

@@ -12,7 +12,7 @@ namespace perinom::cli {
 /// Adds one snapshot at `time` to the series and rewrites the .pvd: displacement, stress,
 /// von Mises, mean stress, volume; the improved formulation's subregions; with plasticity the
 /// committed equivalent plastic strain, plastic strain tensor and yield flag (1: the particle
-/// has yielded, xi > 0). With output.csv the same point data also go to
+/// has yielded, xi > 0). A thin plate writes its own fields (plate_output.hpp). With output.csv the same point data also go to
 /// dir/NAME_<index>.csv (the .vtu's name with .csv), one row per particle, for scripts.
 void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const std::vector<double>& u,
                   const std::string& dir = "");

@@ -72,6 +72,8 @@ void couple_to_faces(Loading& load, const FaceOf& face_of, const BoxGeometry& bo
   }
 }
 
+}  // namespace
+
 BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud) {
   const int d = cloud.dim;
   BoundProbe b{p, {}, {}};
@@ -109,28 +111,32 @@ BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud) {
   return b;
 }
 
-}  // namespace
+std::string horizon_key(const Scene& s) {
+  return s.discretization.horizon_neighbors > 0 ? "discretization.horizon.neighbors" : "discretization.horizon.ratio";
+}
+
+Families scene_families(const Scene& s, const PointCloud& cloud) {
+  try {
+    return s.discretization.horizon_neighbors > 0
+               ? knn_families(cloud, s.discretization.horizon_neighbors)
+               : radius_families(cloud, s.discretization.horizon_ratio * s.discretization.dx);
+  } catch (const InputError& e) {
+    throw InputError(s.source + ": " + horizon_key(s) + ": " + e.what());
+  }
+}
 
 Problem build_problem(const Scene& s, PhaseTimer* timer) {
+  if (s.thin_plate()) return build_plate_problem(s, timer);
   Problem p;
   p.scene = s;
   if (timer) timer->start("discretization");
-  const std::string horizon_key = s.discretization.horizon_neighbors > 0
-                                      ? "discretization.horizon.neighbors"
-                                      : "discretization.horizon.ratio";
-  Families families;
+  const std::string horizon = horizon_key(s);
   try {
     p.cloud = make_lattice(s.geometry, s.discretization.dx, s.discretization.jitter, s.discretization.seed);
   } catch (const InputError& e) {
     throw InputError(s.source + ": geometry: " + e.what());
   }
-  try {
-    families = s.discretization.horizon_neighbors > 0
-                   ? knn_families(p.cloud, s.discretization.horizon_neighbors)
-                   : radius_families(p.cloud, s.discretization.horizon_ratio * s.discretization.dx);
-  } catch (const InputError& e) {
-    throw InputError(s.source + ": " + horizon_key + ": " + e.what());
-  }
+  const Families families = scene_families(s, p.cloud);
   p.bonds = families.bonds();
   FaceOf face_of;
   p.loading = make_loading(s, s.boundary, p.cloud, face_of);
@@ -165,7 +171,7 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
   try {
     p.model = std::make_unique<CorrespondenceModel>(p.cloud, families, s.material, opt, std::move(surface));
   } catch (const InputError& e) {
-    throw InputError(s.source + ": " + horizon_key + ": " + e.what());
+    throw InputError(s.source + ": " + horizon + ": " + e.what());
   }
   if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, p.model->G());
   for (std::size_t k = 0; k < p.stages.size(); ++k)

@@ -1,5 +1,6 @@
 // Reads a scene file into a Scene, strictly: unknown keys, wrong types, missing keys and
 // values out of range all end in an InputError that names the key and its line.
+#include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -7,6 +8,7 @@
 #include "perinom/core/error.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/scene/scene.hpp"
+#include "plate_keys.hpp"
 #include "yaml_fields.hpp"
 
 namespace perinom {
@@ -126,7 +128,8 @@ void read_material(Fields f, Scene& s) {
 
 void read_model(Fields f, Scene& s) {
   s.model.type = f.text("type", "correspondence");
-  if (s.model.type != "correspondence") f.fail("type", "unknown model type (known: correspondence)");
+  if (s.model.type == "thin_plate") return detail::read_plate_model(f, s);
+  if (s.model.type != "correspondence") f.fail("type", "unknown model type (known: correspondence, thin_plate)");
   s.model.formulation = f.text("formulation", "improved");
   Formulation parsed;
   if (!parse_formulation(s.model.formulation, parsed))
@@ -148,6 +151,12 @@ Region read_region(Fields& f, const Scene& s) {
   const YAML::Node n = f.node("region");
   f.mark("region");
   if (!n.IsDefined() || n.IsNull()) f.fail("region", "required key is missing");
+  if (n.IsScalar() && n.as<std::string>() == "all") {
+    r.is_side = false;
+    r.min.fill(-INFINITY);
+    r.max.fill(INFINITY);
+    return r;
+  }
   if (n.IsScalar()) {
     r.is_side = true;
     if (!parse_side(n.as<std::string>(), s.dim, r.side))
@@ -187,6 +196,12 @@ std::vector<BoundarySpec> read_boundary(const std::vector<YAML::Node>& items, co
       }
       d.finish();
     }
+    if (s.thin_plate()) {
+      detail::read_plate_boundary(f, b);
+      out.push_back(b);
+      continue;
+    }
+    if (f.has("support")) f.fail("support", "edge supports belong to model.type thin_plate (here: fix or displacement)");
     if (f.has("traction")) b.traction = f.vector("traction", s.dim);
     if (f.has("pressure")) b.pressure = f.number("pressure");
     const std::string at = f.text("at", "layer");
@@ -202,6 +217,8 @@ std::vector<BoundarySpec> read_boundary(const std::vector<YAML::Node>& items, co
 }
 
 void read_stages(const std::vector<YAML::Node>& items, const std::string& source, Scene& s) {
+  if (!items.empty() && s.thin_plate())
+    throw InputError(detail::where(source, items[0]) + "stages: a thin_plate is loaded in one stage (solver.load_steps)");
   for (std::size_t k = 0; k < items.size(); ++k) {
     const std::string key = "stages[" + std::to_string(k) + "]";
     Fields f(items[k], key, source);
@@ -224,6 +241,8 @@ void read_solver(Fields f, Scene& s) {
   if (v.type == "verlet" && s.plasticity)
     f.fail("type", "verlet is not available with a drucker_prager material (use lbc, adr or newton)");
   if (v.type == "verlet" && !s.stages.empty()) f.fail("type", "verlet does not run load stages (use lbc, adr or newton)");
+  if (s.thin_plate() && v.type != "adr" && v.type != "verlet")
+    f.fail("type", "a thin_plate is solved by adr (static) or verlet (dynamic); newton and lbc have no plate tangent");
   if (!s.stages.empty() && f.has("load_steps")) f.fail("load_steps", "with stages, each stage sets its steps");
   const bool newton = v.type == "newton";
   if (newton) v.tolerance = 1e-10, v.max_iterations = 50;
@@ -257,6 +276,7 @@ void read_solver(Fields f, Scene& s) {
   if (!(v.step_tolerance > 0.0)) f.fail("step_tolerance", "must be positive");
   v.check = f.text("check", "none");
   if (v.check != "none" && v.check != "newton") f.fail("check", "must be none or newton");
+  if (v.check == "newton" && s.thin_plate()) f.fail("check", "Newton has no thin_plate tangent yet: use none");
   if (v.check == "newton" && v.type != "adr" && v.type != "lbc")
     f.fail("check", "the Newton check compares static answers: it needs solver.type adr or lbc");
   v.yield_tolerance = f.number("yield_tolerance", v.yield_tolerance);
@@ -287,7 +307,10 @@ void read_probes(const std::vector<YAML::Node>& items, const std::string& source
     } else {
       p.point = f.vector("point", s.dim);
     }
-    p.field = f.text("field", "displacement");
+    p.field = f.text("field", s.thin_plate() ? "deflection" : "displacement");
+    if ((p.field == "deflection") != s.thin_plate())
+      f.fail("field", s.thin_plate() ? "a thin_plate probe measures the deflection (field: deflection)"
+                                     : "deflection is the field of a thin_plate (model.type: thin_plate)");
     if (f.has("reconstruct")) {
       f.mark("reconstruct");
       try {
@@ -298,7 +321,9 @@ void read_probes(const std::vector<YAML::Node>& items, const std::string& source
       if (p.reconstruct && (p.is_line || p.field != "displacement"))
         f.fail("reconstruct", "only point probes of the displacement are reconstructed");
     }
-    if (p.field == "displacement") {
+    if (p.field == "deflection") {
+      if (f.has("component")) f.fail("component", "a deflection probe has no component");
+    } else if (p.field == "displacement") {
       p.component = f.text("component", p.is_line ? "x" : "");
       if (axis_of(p.component, s.dim) < 0) f.fail("component", "must be x, y" + std::string(s.dim == 3 ? " or z" : ""));
     } else if (p.field == "stress") {
@@ -345,6 +370,7 @@ Scene parse_scene(const std::string& text, const std::string& source,
   read_material(top.map("material"), s);
   if (top.has("model")) read_model(top.map("model"), s);
   else top.mark("model");
+  if (s.thin_plate()) detail::check_plate_scene(root, s);
   s.boundary = read_boundary(top.list("boundary"), source, s);
   read_stages(top.list("stages"), source, s);
   if (top.has("solver")) read_solver(top.map("solver"), s);

@@ -428,3 +428,69 @@ TEST_CASE("a valid Drucker-Prager scene passes the check, and Verlet is refused 
   const std::string s = with(plastic_scene("h", "0.0"), "  type: lbc\n", "  type: verlet\n");
   require_rejected(s, {at_line(s, "type: verlet", "solver.type: verlet is not available with a drucker_prager material")});
 }
+
+namespace {
+
+/// A valid thin plate: 10 x 10 cells, simply supported left and right, pressure everywhere.
+const std::string plate_scene = R"(name: plate
+dimension: 2
+geometry:
+  box: {min: [0.0, 0.0], max: [0.1, 0.1]}
+  thickness: 0.002
+discretization:
+  dx: 0.01
+  horizon: {ratio: 2.015}
+material:
+  type: linear_elastic
+  E: 2.0e11
+  nu: 0.3
+  density: 7800.0
+model:
+  type: thin_plate
+boundary:
+  - region: left
+    support: simply_supported
+  - {region: right, support: clamped}
+  - {region: all, pressure: 100.0}
+probes:
+  - {name: mid, point: [0.05, 0.05], field: deflection}
+)";
+
+}  // namespace
+
+TEST_CASE("thin_plate keys are checked, each by its key", "[cli][plate]") {
+  {
+    ScratchDir dir;
+    std::ofstream(dir.path / "scene.yaml") << plate_scene;
+    const Outcome o = perinom(dir, "check scene.yaml");
+    INFO("stderr: " << o.err);
+    CHECK(o.exit_code == 0);
+  }
+  SECTION("an unknown support") {
+    const std::string s = with(plate_scene, "support: simply_supported", "support: hinged");
+    require_rejected(s, {at_line(s, "support: hinged", "boundary[0].support: must be simply_supported or clamped")});
+  }
+  SECTION("the thickness is required") {
+    const std::string s = with(plate_scene, "  thickness: 0.002\n", "");
+    require_rejected(s, {"geometry.thickness: is required for a thin_plate"});
+  }
+  SECTION("elasticity keys are refused") {
+    const std::string s = with(plate_scene, "    support: simply_supported\n", "    fix: [x]\n");
+    require_rejected(s, {at_line(s, "fix: [x]", "boundary[0].fix: a thin_plate boundary item takes")});
+  }
+  SECTION("a correspondence option is refused") {
+    const std::string s = with(plate_scene, "  type: thin_plate\n", "  type: thin_plate\n  formulation: strong\n");
+    require_rejected(s, {at_line(s, "formulation:", "model.formulation: is a correspondence option")});
+  }
+  SECTION("Newton has no plate tangent") {
+    require_rejected(plate_scene + "solver: {type: newton}\n", {"solver.type: a thin_plate is solved by adr (static) or verlet"});
+  }
+  SECTION("a plate probe measures the deflection") {
+    const std::string s = with(plate_scene, "field: deflection", "field: displacement, component: x");
+    require_rejected(s, {at_line(s, "field: displacement", "probes[0].field: a thin_plate probe measures the deflection")});
+  }
+  SECTION("a support outside a plate scene") {
+    const std::string s = with(tiny_scene, "    fix: [x, y]\n", "    support: clamped\n");
+    require_rejected(s, {at_line(s, "support:", "boundary[0].support: edge supports belong to model.type thin_plate")});
+  }
+}

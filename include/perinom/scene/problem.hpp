@@ -7,6 +7,7 @@
 #include "perinom/core/timer.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/models/loading.hpp"
+#include "perinom/models/thin_plate.hpp"
 #include "perinom/scene/scene.hpp"
 
 namespace perinom {
@@ -19,15 +20,33 @@ struct BoundProbe {
   std::vector<double> along;
 };
 
+/// The model is either a correspondence model (`model`) or a thin plate (`plate`); the other
+/// pointer is empty, so a scene builds only the operators it uses. physics() is whichever
+/// was built, for the solvers.
 struct Problem {
   Scene scene;
-  PointCloud cloud;
+  PointCloud cloud;  ///< the particles the solvers, probes and snapshots see (a plate: its nodes, no ghosts)
   std::size_t bonds = 0;
   std::unique_ptr<CorrespondenceModel> model;
+  std::unique_ptr<ThinPlateModel> plate;
   Loading loading;                 ///< the scene's `boundary` at solver.load_steps (single-stage solvers)
   std::vector<LoadStage> stages;   ///< load-path scenes (Scene::load_path): one per stage
   std::vector<BoundProbe> probes;
+
+  Model& physics() { return plate ? static_cast<Model&>(*plate) : *model; }
+  const Model& physics() const { return plate ? static_cast<const Model&>(*plate) : *model; }
 };
+
+/// Binds a probe to the cloud's particles; throws InputError for a line that meets none.
+BoundProbe bind_probe(const ProbeSpec& spec, const PointCloud& cloud);
+
+/// "discretization.horizon.neighbors" or "discretization.horizon.ratio", for messages.
+std::string horizon_key(const Scene& scene);
+/// The families discretization.horizon asks for on the cloud; errors name that key.
+Families scene_families(const Scene& scene, const PointCloud& cloud);
+
+/// Builds a thin_plate scene's problem (called by build_problem).
+Problem build_plate_problem(const Scene& scene, PhaseTimer* timer);
 
 /// Builds the problem (lattice, families, operators, loading, probes). Phases are timed
 /// in `timer` when given. Throws InputError for a region that selects no particle or a

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "perinom/geometry/lattice.hpp"
+#include "perinom/geometry/plate_cloud.hpp"
 #include "perinom/geometry/region.hpp"
 #include "perinom/materials/drucker_prager.hpp"
 #include "perinom/materials/linear_elastic.hpp"
@@ -25,9 +26,9 @@ struct DiscretizationSpec {
 };
 
 struct ModelSpec {
-  std::string type = "correspondence";
+  std::string type = "correspondence";  ///< correspondence | thin_plate
   std::string formulation = "improved";
-  double stabilization = 0.5;  ///< C_hg
+  double stabilization = 0.5;  ///< C_hg (thin_plate: of the operator energy)
   std::string stabilization_storage = "auto";  ///< auto | fused | assembled | matrix_free
   std::string weight_precision = "double";          ///< double | single (G's stored weights)
 };
@@ -42,6 +43,7 @@ struct BoundarySpec {
   std::optional<std::array<double, 3>> traction;      ///< Pa, on a side
   std::optional<double> pressure;                     ///< Pa, positive pushes inward
   bool at_face = false;  ///< displacements prescribed at the box face, not at the particles
+  std::optional<EdgeSupport> support;  ///< thin_plate: how the side is held
 };
 
 /// One stage of a load path (`stages:`): its own boundary conditions, added to the scene's
@@ -76,7 +78,8 @@ struct ProbeSpec {
   std::string name;
   bool is_line = false;
   std::array<double, 3> point{0, 0, 0}, from{0, 0, 0}, to{0, 0, 0};
-  /// displacement | stress | von_mises | mean_stress | equivalent_strain | eq_plastic_strain
+  /// displacement | stress | von_mises | mean_stress | equivalent_strain | eq_plastic_strain;
+  /// thin_plate: deflection
   std::string field = "displacement";
   std::string component = "x";         ///< x|y|z, or xx|yy|zz|xy|yz|xz for stress
   bool reconstruct = false;  ///< point displacement probes: u_i + (grad u)_i (x - x_i) at the point
@@ -106,6 +109,7 @@ struct Scene {
 
   /// Solved as a quasi-static load path (solvers/load_path.hpp): a plastic material,
   /// stages, or solver.type lbc.
+  bool thin_plate() const { return model.type == "thin_plate"; }
   bool load_path() const { return plasticity.has_value() || !stages.empty() || solver.type == "lbc"; }
 };
 

@@ -1,0 +1,79 @@
+#pragma once
+/// @file The nonlocal Kirchhoff thin plate (THEORY sec. 7; seed 002 sec. 3.2, 6.2).
+#include <functional>
+#include <optional>
+#include <utility>
+
+#include "perinom/geometry/plate_cloud.hpp"
+#include "perinom/models/model.hpp"
+#include "perinom/neighbors/families.hpp"
+#include "perinom/operators/influence.hpp"
+#include "perinom/operators/second_order_operator.hpp"
+#include "perinom/operators/second_order_stabilization.hpp"
+
+namespace perinom {
+
+struct ThinPlateOptions {
+  double E = 0.0;          ///< Young's modulus (Pa)
+  double nu = 0.0;         ///< Poisson's ratio
+  double thickness = 0.0;  ///< t (m)
+  double density = 0.0;    ///< rho (kg/m^3)
+  Influence influence = Influence::inverse_square;
+  double stabilization = 0.5;  ///< C_hg of the operator energy (second_order_stabilization.hpp); 0: none
+};
+
+/// Deflection w (m), one unknown per physical node of a PlateCloud. With kappa_i = (Hess w)_i
+/// stored as (xx, xy, yy) and the bending moments M = D0 (nu tr(kappa) I + (1 - nu) kappa)
+/// (N m / m), D0 = E t^3 / (12 (1 - nu^2)):
+///   W(w) = sum_i A_i 1/2 M_i : kappa_i + W_s(w),    f = dW/dw = H^T (A . (Mxx, 2 Mxy, Myy)) + S w,
+/// A_i the node's quadrature area, W_s the operator-energy stabilization. The ghosts of
+/// the supported edges enter the fits with w_ghost = sign w_image; their forces are folded
+/// onto their images (f_image += sign f_ghost), so W is minimised over the physical nodes
+/// alone and the stiffness stays symmetric. Loads (pressure q: q A_i) and the edge
+/// conditions w = 0 come from a Loading. Lumped mass rho t A_i.
+class ThinPlateModel : public Model {
+ public:
+  /// Assembles the second-order operator (gradient and Hessian) on plate.cloud and the
+  /// stabilization. Throws InputError naming a particle whose fit is singular.
+  ThinPlateModel(PlateCloud plate, const Families& families, const ThinPlateOptions& options);
+  ThinPlateModel(const ThinPlateModel&) = delete;
+  ThinPlateModel& operator=(const ThinPlateModel&) = delete;
+
+  std::size_t particles() const override { return plate_.physical; }
+  int dofs_per_particle() const override { return 1; }
+  void internal_force(const double* w, double* f) override;
+  double energy(const double* w) override;
+  std::vector<double> lumped_mass() const override;
+  std::vector<double> stiffness_row_sums() const override;
+  std::vector<std::pair<std::string, std::size_t>> memory() const override;
+
+  /// Visits every row of the stiffness K = dF/dw over the physical nodes (ghosts folded),
+  /// visit(row, cols, values) with cols sorted; called concurrently for distinct rows.
+  void visit_tangent_rows(const std::function<void(std::size_t, const std::vector<ParticleId>&,
+                                                   const std::vector<double>&)>& visit) const;
+
+  /// kappa = Hess w (N x 3: xx, xy, yy; 1/m) and M (N x 3: xx, xy, yy; N m / m) per physical node.
+  void curvature(const double* w, double* kappa) const;
+  void moments(const double* w, double* M) const;
+
+  /// D0 = E t^3 / (12 (1 - nu^2)) (N m).
+  double rigidity() const { return D0_; }
+  const PlateCloud& plate() const { return plate_; }
+  const SecondOrderOperator& op() const { return op_; }
+
+ private:
+  void extend(const double* w, std::vector<double>& ext) const;
+  void derivatives(const double* w);  // ext_, grad_, hess_ at w
+  void moment(const double* kappa, double* M) const;
+  PlateCloud plate_;
+  ThinPlateOptions opt_;
+  double D0_;
+  SecondOrderOperator op_;
+  std::optional<SecondOrderStabilization> S_;
+  std::vector<Offset> t_bond_;            // dual-support position -> bond
+  std::vector<Offset> ghost_off_;         // per physical node: its ghosts (CSR)
+  std::vector<ParticleId> ghost_list_;
+  std::vector<double> ext_, grad_, hess_, Q_, fe_;  // workspaces over all nodes
+};
+
+}  // namespace perinom

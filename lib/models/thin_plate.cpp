@@ -1,0 +1,172 @@
+#include "perinom/models/thin_plate.hpp"
+
+#include <cmath>
+
+#include "perinom/operators/bond_weights.hpp"
+#include "perinom/operators/row_accumulator.hpp"
+
+namespace perinom {
+
+ThinPlateModel::ThinPlateModel(PlateCloud plate, const Families& families, const ThinPlateOptions& opt)
+    : plate_(std::move(plate)), opt_(opt),
+      D0_(opt.E * std::pow(opt.thickness, 3) / (12.0 * (1.0 - opt.nu * opt.nu))) {
+  const PointCloud& c = plate_.cloud;
+  const std::size_t n = c.size(), phys = plate_.physical;
+  const BondWeights bw = bond_weights(c, families, opt.influence);
+  op_ = SecondOrderOperator(c, families, bw);
+  if (opt.stabilization > 0.0) {
+    std::vector<double> area(n, 0.0);
+    std::copy(plate_.area.begin(), plate_.area.end(), area.begin());
+    S_.emplace(c, bw, op_, second_order_stabilization_coefficients(c, op_, bw, opt.stabilization, D0_, area));
+  }
+  t_bond_ = dual_support(families).bond;
+  ghost_off_.assign(phys + 1, 0);
+  for (const ParticleId m : plate_.image) ++ghost_off_[m + 1];
+  for (std::size_t m = 0; m < phys; ++m) ghost_off_[m + 1] += ghost_off_[m];
+  ghost_list_.resize(plate_.image.size());
+  std::vector<Offset> next(ghost_off_.begin(), ghost_off_.end() - 1);
+  for (std::size_t g = 0; g < plate_.image.size(); ++g)
+    ghost_list_[next[plate_.image[g]]++] = static_cast<ParticleId>(phys + g);
+  ext_.assign(n, 0.0);
+  grad_.assign(n * 2, 0.0);
+  hess_.assign(n * 3, 0.0);
+  Q_.assign(n * 3, 0.0);
+  fe_.assign(n, 0.0);
+}
+
+void ThinPlateModel::extend(const double* w, std::vector<double>& ext) const {
+  const std::size_t phys = plate_.physical;
+  std::copy(w, w + phys, ext.begin());
+  for (std::size_t g = 0; g < plate_.image.size(); ++g) ext[phys + g] = plate_.sign[g] * w[plate_.image[g]];
+}
+
+void ThinPlateModel::derivatives(const double* w) {
+  extend(w, ext_);
+  op_.gradient(ext_.data(), 1, grad_.data());
+  op_.hessian(ext_.data(), 1, hess_.data());
+}
+
+void ThinPlateModel::moment(const double* k, double* M) const {
+  M[0] = D0_ * (k[0] + opt_.nu * k[2]);
+  M[1] = D0_ * (1.0 - opt_.nu) * k[1];
+  M[2] = D0_ * (k[2] + opt_.nu * k[0]);
+}
+
+void ThinPlateModel::internal_force(const double* w, double* f) {
+  derivatives(w);
+  const std::size_t phys = plate_.physical;
+  for (std::size_t i = 0; i < phys; ++i) {
+    double M[3];
+    moment(hess_.data() + i * 3, M);
+    const double A = plate_.area[i];
+    Q_[i * 3] = A * M[0], Q_[i * 3 + 1] = 2.0 * A * M[1], Q_[i * 3 + 2] = A * M[2];
+  }
+  op_.hessian_transpose(Q_.data(), 1, fe_.data());
+  if (S_) S_->add_force(ext_.data(), grad_.data(), hess_.data(), fe_.data());
+  std::copy(fe_.begin(), fe_.begin() + phys, f);
+  for (std::size_t g = 0; g < plate_.image.size(); ++g) f[plate_.image[g]] += plate_.sign[g] * fe_[phys + g];
+}
+
+double ThinPlateModel::energy(const double* w) {
+  derivatives(w);
+  double W = 0.0;
+  for (std::size_t i = 0; i < plate_.physical; ++i) {
+    const double* k = hess_.data() + i * 3;
+    double M[3];
+    moment(k, M);
+    W += 0.5 * plate_.area[i] * (M[0] * k[0] + 2.0 * M[1] * k[1] + M[2] * k[2]);
+  }
+  return W + (S_ ? S_->energy(ext_.data(), grad_.data(), hess_.data()) : 0.0);
+}
+
+std::vector<double> ThinPlateModel::lumped_mass() const {
+  std::vector<double> m(plate_.physical);
+  for (std::size_t i = 0; i < m.size(); ++i) m[i] = opt_.density * opt_.thickness * plate_.area[i];
+  return m;
+}
+
+void ThinPlateModel::visit_tangent_rows(
+    const std::function<void(std::size_t, const std::vector<ParticleId>&, const std::vector<double>&)>& visit) const {
+  const std::size_t phys = plate_.physical;
+  const SecondOrderOperator& H = op_;
+  auto physical_of = [&](ParticleId b, double& s) {
+    if (static_cast<std::size_t>(b) < phys) return s = 1.0, b;
+    const std::size_t g = b - phys;
+    return s = plate_.sign[g], plate_.image[g];
+  };
+  auto dot3 = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+#pragma omp parallel
+  {
+    RowAccumulator acc(phys, 1);
+    std::vector<double> values;
+    double sa = 1.0;  // the sign of the row being added
+    const std::function<void(ParticleId, double)> add = [&](ParticleId b, double v) {
+      double sb;
+      const ParticleId m = physical_of(b, sb);
+      *acc.at(m) += sa * sb * v;
+    };
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t r = 0; r < phys; ++r) {
+      // The rows of r and of its ghosts, folded.
+      for (Offset q = -1; q < ghost_off_[r + 1] - ghost_off_[r]; ++q) {
+        const std::size_t a = q < 0 ? r : static_cast<std::size_t>(ghost_list_[ghost_off_[r] + q]);
+        sa = q < 0 ? 1.0 : plate_.sign[a - phys];
+        // Bending: K_ab = sum_i A_i h_ia . Dm h_ib over the centres i that see a.
+        auto centre = [&](std::size_t i, const double* h_ia) {
+          double v[3];
+          moment(h_ia, v);
+          v[1] *= 2.0;
+          for (double& x : v) x *= plate_.area[i];
+          add(static_cast<ParticleId>(i), dot3(v, H.hessian_diagonal(i)));
+          for (Offset k = H.offsets()[i]; k < H.offsets()[i + 1]; ++k) add(H.cols()[k], dot3(v, H.hessian_weight(k)));
+        };
+        if (a < phys) centre(a, H.hessian_diagonal(a));
+        for (Offset t = H.dual_offsets()[a]; t < H.dual_offsets()[a + 1]; ++t) {
+          const std::size_t i = H.dual_cols()[t];
+          if (i < phys) centre(i, H.hessian_weight(t_bond_[t]));
+        }
+        if (S_) S_->add_row(a, add);
+      }
+      acc.finish();
+      values.resize(acc.cols().size());
+      for (std::size_t k = 0; k < values.size(); ++k) values[k] = *acc.block(k);
+      visit(r, acc.cols(), values);
+      acc.clear();
+    }
+  }
+}
+
+std::vector<double> ThinPlateModel::stiffness_row_sums() const {
+  std::vector<double> sums(plate_.physical, 0.0);
+  visit_tangent_rows([&](std::size_t r, const std::vector<ParticleId>&, const std::vector<double>& v) {
+    for (const double x : v) sums[r] += std::abs(x);
+  });
+  return sums;
+}
+
+void ThinPlateModel::curvature(const double* w, double* kappa) const {
+  std::vector<double> ext(plate_.cloud.size()), hess(plate_.cloud.size() * 3);
+  extend(w, ext);
+  op_.hessian(ext.data(), 1, hess.data());
+  std::copy(hess.begin(), hess.begin() + plate_.physical * 3, kappa);
+}
+
+void ThinPlateModel::moments(const double* w, double* M) const {
+  curvature(w, M);
+  for (std::size_t i = 0; i < plate_.physical; ++i) {
+    const double k[3] = {M[i * 3], M[i * 3 + 1], M[i * 3 + 2]};
+    moment(k, M + i * 3);
+  }
+}
+
+std::vector<std::pair<std::string, std::size_t>> ThinPlateModel::memory() const {
+  std::vector<std::pair<std::string, std::size_t>> m;
+  m.emplace_back("second-order operator (g, h)", op_.memory_bytes());
+  if (S_) m.emplace_back("plate stabilization", S_->memory_bytes());
+  m.emplace_back("workspaces (w, grad, kappa, M)",
+                 (ext_.size() + grad_.size() + hess_.size() + Q_.size() + fe_.size()) * sizeof(double) +
+                     (t_bond_.size() + ghost_off_.size()) * sizeof(Offset));
+  return m;
+}
+
+}  // namespace perinom

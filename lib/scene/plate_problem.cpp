@@ -1,0 +1,88 @@
+// A thin_plate scene built: the plate's nodes and ghosts, families, the ThinPlateModel, the
+// edge conditions and the pressure, the probes. No correspondence operator is assembled.
+#include <algorithm>
+#include <cmath>
+
+#include "perinom/core/error.hpp"
+#include "perinom/scene/problem.hpp"
+
+namespace perinom {
+namespace {
+
+/// Ghost layers that cover every physical node's family: delta over the smallest spacing for
+/// radius families; for k nearest, a guess checked once the families exist.
+int ghost_layers(const Scene& s) {
+  const auto& g = s.geometry;
+  const double dx = s.discretization.dx;
+  double h = INFINITY;
+  for (int a = 0; a < 2; ++a) {
+    const double L = g.max[a] - g.min[a];
+    h = std::min(h, L / std::max(1L, std::lround(L / dx)));
+  }
+  if (s.discretization.horizon_neighbors > 0)
+    return static_cast<int>(std::ceil(std::sqrt(s.discretization.horizon_neighbors / M_PI))) + 1;
+  return static_cast<int>(std::floor(s.discretization.horizon_ratio * dx / h * (1.0 + 1e-9)));
+}
+
+}  // namespace
+
+Problem build_plate_problem(const Scene& s, PhaseTimer* timer) {
+  Problem p;
+  p.scene = s;
+  if (timer) timer->start("discretization");
+  const std::string horizon = horizon_key(s);
+  PlateEdges edges{EdgeSupport::free, EdgeSupport::free, EdgeSupport::free, EdgeSupport::free};
+  for (const auto& b : s.boundary)
+    if (b.support) edges[b.region.side.axis * 2 + (b.region.side.at_max ? 1 : 0)] = *b.support;
+  const int layers = ghost_layers(s);
+  PlateCloud plate;
+  try {
+    plate = make_plate_cloud(s.geometry, s.discretization.dx, edges, layers);
+  } catch (const InputError& e) {
+    throw InputError(s.source + ": discretization.dx: " + e.what());
+  }
+  const Families families = scene_families(s, plate.cloud);
+  // A family reaches no ghost beyond the last layer while its radius stays below the next one.
+  const double reach = (layers + 1) * std::min(plate.cloud.spacing[0], plate.cloud.spacing[1]) * (1.0 - 1e-9);
+  for (std::size_t i = 0; i < plate.physical; ++i)
+    if (families.support[i] >= reach)
+      throw InputError(s.source + ": " + horizon + ": the families reach beyond the plate's " +
+                       std::to_string(layers) + " ghost layers (use fewer neighbours)");
+  p.bonds = families.bonds();
+  // The solvers see the physical nodes, with their quadrature volumes.
+  p.cloud.dim = 2;
+  p.cloud.dx = s.discretization.dx;
+  p.cloud.spacing = plate.cloud.spacing;
+  p.cloud.x.assign(plate.cloud.x.begin(), plate.cloud.x.begin() + 2 * plate.physical);
+  p.cloud.volume = plate.area;
+  for (double& v : p.cloud.volume) v *= s.geometry.thickness;
+  // w = 0 on the supported edges; the pressure q as the nodal force q A_i.
+  for (int e = 0; e < 4; ++e)
+    if (edges[e] != EdgeSupport::free)
+      for (const ParticleId i : plate.edge_nodes(e)) p.loading.fix(i, 0.0);
+  for (const auto& b : s.boundary) {
+    if (!b.pressure) continue;
+    const auto ids = select(b.region, s.geometry, p.cloud);
+    if (ids.empty()) throw InputError(b.where + ".region: selects no particle");
+    if (p.loading.force.empty()) p.loading.force.assign(plate.physical, 0.0);
+    for (const auto i : ids) p.loading.force[i] += *b.pressure * plate.area[i];
+  }
+  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
+  if (timer) timer->start("operators");
+  ThinPlateOptions opt;
+  opt.E = s.material.E;
+  opt.nu = s.material.nu;
+  opt.density = s.material.density;
+  opt.thickness = s.geometry.thickness;
+  opt.influence = s.discretization.weight;
+  opt.stabilization = s.model.stabilization;
+  try {
+    p.plate = std::make_unique<ThinPlateModel>(std::move(plate), families, opt);
+  } catch (const InputError& e) {
+    throw InputError(s.source + ": " + horizon + ": " + e.what());
+  }
+  if (timer) timer->stop();
+  return p;
+}
+
+}  // namespace perinom
