@@ -34,7 +34,7 @@ int check(const Options& opt) {
   if (opt.positional.size() != 1) throw InputError("check needs exactly one scene file");
   const Scene scene = read_scene(opt.positional[0], opt.overrides);
   PhaseTimer timer;
-  const Problem p = build_problem(scene, &timer);
+  Problem p = build_problem(scene, &timer);  // not const: StaticSystem sizes the Jacobian from the model
   const auto mb = [](std::size_t b) { return b / 1048576.0; };
   std::printf("scene %s (%s): valid\n", scene.name.c_str(), scene.source.c_str());
   std::printf("  dimension       %d%s\n", scene.dim,
@@ -67,7 +67,7 @@ int check(const Options& opt) {
   const bool newton = scene.solver.type == "newton" || scene.solver.check == "newton";
   if (newton) {
     // The Jacobian's pattern, as the Newton solver will build it (values included).
-    const StaticSystem system(*p.model, p.loading);
+    const StaticSystem system(p.physics(), p.loading);
     const std::size_t bytes = system.jacobian().memory_bytes();
     std::printf("    %-30s %10.2f MiB  (%zu nonzeros; KLU's factors come on top, typically\n"
                 "    %-30s several times this in 2-D and more in 3-D)\n",
@@ -76,7 +76,7 @@ int check(const Options& opt) {
   }
   if (p.plate)
     std::printf("  not assembled: gradient operator G and stabilization S of elasticity (no correspondence "
-                "model), Newton Jacobian (no plate tangent solver)%s\n",
+                "model)%s%s\n", newton ? "" : ", Newton Jacobian (no newton solver)",
                 scene.model.stabilization > 0.0 ? "" : ", plate stabilization (C_hg = 0)");
   else
     std::printf("  not assembled: Hessian (no second-order model)%s%s\n",

@@ -176,9 +176,7 @@ void CorrespondenceModel::visit_rows(
                        formulation_ == Formulation::classical ? nullptr : &strong);
 }
 
-void CorrespondenceModel::visit_tangent_rows(
-    const std::function<void(std::size_t, const std::vector<ParticleId>&,
-                             const std::vector<double>&)>& visit) const {
+void CorrespondenceModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
   if (!C_.empty()) {
     visit_rows(PointwiseTangent{C_.data(), std::size_t(dim_ * dim_ * dim_ * dim_), volume_.data()}, visit);
     return;

@@ -85,8 +85,7 @@ std::vector<double> ThinPlateModel::lumped_mass() const {
   return m;
 }
 
-void ThinPlateModel::visit_tangent_rows(
-    const std::function<void(std::size_t, const std::vector<ParticleId>&, const std::vector<double>&)>& visit) const {
+void ThinPlateModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
   const std::size_t phys = plate_.physical;
   const SecondOrderOperator& H = op_;
   auto physical_of = [&](ParticleId b, double& s) {

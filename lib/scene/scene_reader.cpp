@@ -241,8 +241,8 @@ void read_solver(Fields f, Scene& s) {
   if (v.type == "verlet" && s.plasticity)
     f.fail("type", "verlet is not available with a drucker_prager material (use lbc, adr or newton)");
   if (v.type == "verlet" && !s.stages.empty()) f.fail("type", "verlet does not run load stages (use lbc, adr or newton)");
-  if (s.thin_plate() && v.type != "adr" && v.type != "verlet")
-    f.fail("type", "a thin_plate is solved by adr (static) or verlet (dynamic); newton and lbc have no plate tangent");
+  if (s.thin_plate() && v.type == "lbc")
+    f.fail("type", "a thin_plate is elastic: solve it by adr or newton (static) or verlet (dynamic)");
   if (!s.stages.empty() && f.has("load_steps")) f.fail("load_steps", "with stages, each stage sets its steps");
   const bool newton = v.type == "newton";
   if (newton) v.tolerance = 1e-10, v.max_iterations = 50;
@@ -276,7 +276,6 @@ void read_solver(Fields f, Scene& s) {
   if (!(v.step_tolerance > 0.0)) f.fail("step_tolerance", "must be positive");
   v.check = f.text("check", "none");
   if (v.check != "none" && v.check != "newton") f.fail("check", "must be none or newton");
-  if (v.check == "newton" && s.thin_plate()) f.fail("check", "Newton has no thin_plate tangent yet: use none");
   if (v.check == "newton" && v.type != "adr" && v.type != "lbc")
     f.fail("check", "the Newton check compares static answers: it needs solver.type adr or lbc");
   v.yield_tolerance = f.number("yield_tolerance", v.yield_tolerance);

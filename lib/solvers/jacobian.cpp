@@ -9,7 +9,7 @@ std::size_t CsrMatrix::memory_bytes() const {
   return (row_ptr.size() + col.size()) * sizeof(std::int64_t) + val.size() * sizeof(double);
 }
 
-StaticSystem::StaticSystem(CorrespondenceModel& model, const Loading& loading)
+StaticSystem::StaticSystem(TangentModel& model, const Loading& loading)
     : model_(model), loading_(loading), constraint_of_(model.dofs(), -1), fint_(model.dofs()) {
   for (std::size_t k = 0; k < loading.fixed.size(); ++k) constraint_of_[loading.fixed[k]] = k;
   J_.rows = static_cast<std::int64_t>(model.dofs());
@@ -78,9 +78,9 @@ void StaticSystem::fill(bool symbolic) {
 }
 
 void StaticSystem::assemble(const double* u) {
-  // Linear elasticity: the tangent does not depend on u; plasticity: the consistent
-  // tangents at u. The pattern is kept either way.
-  if (model_.plastic()) model_.prepare_tangent(u);
+  // Linear models: the tangent does not depend on u (u may be null); plasticity: the
+  // consistent tangents at u. The pattern is kept either way.
+  if (u) model_.prepare_tangent(u);
   fill(false);
 }
 

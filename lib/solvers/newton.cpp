@@ -71,7 +71,7 @@ double reciprocal_pivot_ratio(SUNLinearSolver ls) {
 
 }  // namespace
 
-SolveReport solve_newton(CorrespondenceModel& model, const Loading& loading,
+SolveReport solve_newton(TangentModel& model, const Loading& loading,
                          const NewtonOptions& opt, std::vector<double>& u, Progress* progress) {
   static_assert(sizeof(sunindextype) == sizeof(std::int64_t), "SUNDIALS must use 64-bit indices");
   const std::size_t n = model.dofs();

@@ -482,8 +482,17 @@ TEST_CASE("thin_plate keys are checked, each by its key", "[cli][plate]") {
     const std::string s = with(plate_scene, "  type: thin_plate\n", "  type: thin_plate\n  formulation: strong\n");
     require_rejected(s, {at_line(s, "formulation:", "model.formulation: is a correspondence option")});
   }
-  SECTION("Newton has no plate tangent") {
-    require_rejected(plate_scene + "solver: {type: newton}\n", {"solver.type: a thin_plate is solved by adr (static) or verlet"});
+  SECTION("lbc has nothing to correct on an elastic plate") {
+    require_rejected(plate_scene + "solver: {type: lbc}\n", {"solver.type: a thin_plate is elastic: solve it by adr or newton"});
+  }
+  SECTION("Newton solves a plate, and checks ADR's") {
+    for (const char* solver : {"solver: {type: newton}\n", "solver: {type: adr, check: newton}\n"}) {
+      ScratchDir dir;
+      std::ofstream(dir.path / "scene.yaml") << plate_scene + solver;
+      const Outcome o = perinom(dir, "run scene.yaml --out out");
+      INFO(solver << "stderr: " << o.err);
+      CHECK(o.exit_code == 0);
+    }
   }
   SECTION("a plate probe measures the deflection") {
     const std::string s = with(plate_scene, "field: deflection", "field: displacement, component: x");

@@ -127,3 +127,65 @@ TEST_CASE("a body free to move rigidly is reported as a missing boundary conditi
   CHECK_THROWS_WITH(solve_newton(*p.model, p.loading, NewtonOptions{}, u),
                     Catch::Contains("singular") && Catch::Contains("boundary condition is probably missing"));
 }
+
+namespace {
+
+/// The seed's square plate at 21 x 21 nodes (dx = 0.025 m) with the given support.
+Problem plate_21(const char* support) {
+  const std::string name = std::string("thin_plate_") + support + ".yaml";
+  return build_problem(read_scene(PERINOM_SOURCE_DIR "/examples/" + name, {"discretization.dx=0.025"}));
+}
+
+}  // namespace
+
+TEST_CASE("the assembled plate Jacobian is the finite-difference derivative of the plate residual",
+          "[solvers][newton][plate]") {
+  for (const char* support : {"simply_supported", "clamped"}) {
+    Problem p = plate_21(support);
+    REQUIRE(p.plate != nullptr);
+    StaticSystem system(p.physics(), p.loading);
+    system.assemble(nullptr);
+    const CsrMatrix& J = system.jacobian();
+    const std::size_t n = system.dofs();
+    const auto w = test::random_field(n, 1e-4, 3);
+    std::vector<double> Rp(n), Rm(n), wp(w), wm(w);
+    double jmax = 0.0;
+    for (const double v : J.val) jmax = std::max(jmax, std::abs(v));
+    // Central differences column by column on a sample of columns (interior, edge, corner).
+    const double h = 1e-6;
+    for (const std::size_t c : {std::size_t(0), std::size_t(1), std::size_t(22), n / 2, n - 23, n - 1}) {
+      wp = w, wm = w;
+      wp[c] += h, wm[c] -= h;
+      system.residual(wp.data(), 1.0, Rp.data());
+      system.residual(wm.data(), 1.0, Rm.data());
+      for (std::int64_t r = 0; r < J.rows; ++r) {
+        double Jrc = 0.0;
+        for (std::int64_t s = J.row_ptr[r]; s < J.row_ptr[r + 1]; ++s)
+          if (J.col[s] == static_cast<std::int64_t>(c)) Jrc = J.val[s];
+        INFO(support << ": row " << r << ", column " << c);
+        REQUIRE(std::abs((Rp[r] - Rm[r]) / (2 * h) - Jrc) <= 1e-7 * jmax);
+      }
+    }
+  }
+}
+
+TEST_CASE("Newton's plate deflection equals ADR's on the 21 x 21 simply supported and clamped plates",
+          "[solvers][newton][plate]") {
+  for (const char* support : {"simply_supported", "clamped"}) {
+    Problem p = plate_21(support);
+    REQUIRE(p.cloud.size() == 21 * 21);
+    std::vector<double> wa, wn;
+    AdrOptions adr;
+    adr.tolerance = 1e-11, adr.displacement_tolerance = 1e-13;
+    REQUIRE(solve_adr(p.physics(), p.loading, adr, wa).converged);
+    const SolveReport rep = solve_newton(p.physics(), p.loading, NewtonOptions{}, wn);
+    INFO(support << ": " << rep.failure);
+    REQUIRE(rep.converged);
+    CHECK(rep.iterations == 1);  // the plate is linear
+    double d2 = 0.0, n2 = 0.0;
+    for (std::size_t k = 0; k < wa.size(); ++k) d2 += (wa[k] - wn[k]) * (wa[k] - wn[k]), n2 += wn[k] * wn[k];
+    WARN(support << " plate: ADR (tolerance 1e-11) and Newton differ by " << std::sqrt(d2 / n2) << " (relative L2)");
+    CHECK(std::sqrt(d2 / n2) < 1e-6);
+    CHECK(relative_difference(wa, wn) < 1e-6);
+  }
+}

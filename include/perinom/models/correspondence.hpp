@@ -13,7 +13,7 @@
 #include "perinom/geometry/point_cloud.hpp"
 #include "perinom/geometry/surface.hpp"
 #include "perinom/materials/linear_elastic.hpp"
-#include "perinom/models/model.hpp"
+#include "perinom/models/tangent_model.hpp"
 #include "perinom/models/plastic_points.hpp"
 #include "perinom/neighbors/families.hpp"
 #include "perinom/operators/gradient_operator.hpp"
@@ -52,7 +52,7 @@ struct CorrespondenceOptions {
   std::optional<DruckerPrager> plasticity;
 };
 
-class CorrespondenceModel : public Model {
+class CorrespondenceModel : public TangentModel {
  public:
   /// Assembles G (and S when C_hg > 0) once. Throws InputError for a singular shape tensor.
   /// The improved and strong formulations need the surface data (find_surface).
@@ -74,8 +74,7 @@ class CorrespondenceModel : public Model {
   /// Visits the block rows of the stiffness dF/du (THEORY sec. 3-5): the weak rows
   /// G^T (V . C) G, the strong rows of the band E for the improved and strong formulations,
   /// plus S. See for_each_tangent_row for the arguments of visit.
-  void visit_tangent_rows(const std::function<void(std::size_t, const std::vector<ParticleId>&,
-                                                   const std::vector<double>&)>& visit) const;
+  void visit_tangent_rows(const TangentRowVisitor& visit) const override;
 
   /// grad u at every particle (N x d x d), and the 3 x 3 Cauchy stress (N x 9). With
   /// plasticity the stress is the return map from the committed state at u.
@@ -89,7 +88,7 @@ class CorrespondenceModel : public Model {
   void commit(const double* u);
   /// Plasticity: the consistent tangents at u, used by visit_tangent_rows until the next
   /// call (the Newton path calls it before each assembly). Elastic models ignore it.
-  void prepare_tangent(const double* u);
+  void prepare_tangent(const double* u) override;
 
   const GradientOperator& G() const { return G_; }
   /// The stabilization operator (matrix-free), or nullptr when C_hg = 0.

@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "perinom/geometry/plate_cloud.hpp"
-#include "perinom/models/model.hpp"
+#include "perinom/models/tangent_model.hpp"
 #include "perinom/neighbors/families.hpp"
 #include "perinom/operators/influence.hpp"
 #include "perinom/operators/second_order_operator.hpp"
@@ -31,7 +31,7 @@ struct ThinPlateOptions {
 /// onto their images (f_image += sign f_ghost), so W is minimised over the physical nodes
 /// alone and the stiffness stays symmetric. Loads (pressure q: q A_i) and the edge
 /// conditions w = 0 come from a Loading. Lumped mass rho t A_i.
-class ThinPlateModel : public Model {
+class ThinPlateModel : public TangentModel {
  public:
   /// Assembles the second-order operator (gradient and Hessian) on plate.cloud and the
   /// stabilization. Throws InputError naming a particle whose fit is singular.
@@ -49,8 +49,9 @@ class ThinPlateModel : public Model {
 
   /// Visits every row of the stiffness K = dF/dw over the physical nodes (ghosts folded),
   /// visit(row, cols, values) with cols sorted; called concurrently for distinct rows.
-  void visit_tangent_rows(const std::function<void(std::size_t, const std::vector<ParticleId>&,
-                                                   const std::vector<double>&)>& visit) const;
+  void visit_tangent_rows(const TangentRowVisitor& visit) const override;
+  /// The plate is linear: K does not depend on w, so there is nothing to prepare.
+  void prepare_tangent(const double*) override {}
 
   /// kappa = Hess w (N x 3: xx, xy, yy; 1/m) and M (N x 3: xx, xy, yy; N m / m) per physical node.
   void curvature(const double* w, double* kappa) const;

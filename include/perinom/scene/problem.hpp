@@ -33,8 +33,8 @@ struct Problem {
   std::vector<LoadStage> stages;   ///< load-path scenes (Scene::load_path): one per stage
   std::vector<BoundProbe> probes;
 
-  Model& physics() { return plate ? static_cast<Model&>(*plate) : *model; }
-  const Model& physics() const { return plate ? static_cast<const Model&>(*plate) : *model; }
+  TangentModel& physics() { return plate ? static_cast<TangentModel&>(*plate) : *model; }
+  const TangentModel& physics() const { return plate ? static_cast<const TangentModel&>(*plate) : *model; }
 };
 
 /// Binds a probe to the cloud's particles; throws InputError for a line that meets none.

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "perinom/models/correspondence.hpp"
+#include "perinom/models/tangent_model.hpp"
 #include "perinom/models/loading.hpp"
 
 namespace perinom {
@@ -25,12 +25,15 @@ struct CsrMatrix {
 /// symbolic analysis across iterations and load steps.
 class StaticSystem {
  public:
-  StaticSystem(CorrespondenceModel& model, const Loading& loading);
+  /// Any model that visits its tangent rows: correspondence elasticity and plasticity, the
+  /// thin plate.
+  StaticSystem(TangentModel& model, const Loading& loading);
 
   std::size_t dofs() const { return static_cast<std::size_t>(J_.rows); }
   /// R(u) at load factor s.
   void residual(const double* u, double s, double* R);
-  /// Refills the Jacobian's values at u (the pattern never changes).
+  /// Refills the Jacobian's values at u (the pattern never changes); u may be null for a
+  /// model whose tangent does not depend on u.
   void assemble(const double* u);
   const CsrMatrix& jacobian() const { return J_; }
   /// max(|s f_ext|, |reactions at u|): the norm a relative residual is measured by (as in ADR).
@@ -38,7 +41,7 @@ class StaticSystem {
 
  private:
   void fill(bool symbolic);
-  CorrespondenceModel& model_;
+  TangentModel& model_;
   const Loading& loading_;
   std::vector<std::int64_t> constraint_of_;  // dof -> index into loading.fixed, or -1
   double kappa_ = 1.0;

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "perinom/core/progress.hpp"
-#include "perinom/models/correspondence.hpp"
+#include "perinom/models/tangent_model.hpp"
 #include "perinom/models/loading.hpp"
 #include "perinom/solvers/adr.hpp"
 
@@ -22,14 +22,14 @@ struct NewtonOptions {
   std::function<void(int step, const std::vector<double>& u, long iterations, double residual)> after_step;
 };
 
-/// Solves the static problem in load steps s = 1/n ... 1. The Jacobian's pattern is built
+/// Solves the static problem of any model with tangent rows (correspondence, thin plate) in load steps s = 1/n ... 1. The Jacobian's pattern is built
 /// once and KLU's symbolic analysis is kept across iterations and load steps; only the
 /// numeric factorization is redone. report.residual is the relative residual as ADR
 /// defines it (|R_free| over the load norm), report.iterations the Newton iterations over
 /// all steps. Throws InputError when the stiffness is singular (a body free to move
 /// rigidly: a missing boundary condition); a solve that fails otherwise returns with
 /// report.failure set.
-SolveReport solve_newton(CorrespondenceModel& model, const Loading& loading,
+SolveReport solve_newton(TangentModel& model, const Loading& loading,
                          const NewtonOptions& options, std::vector<double>& u,
                          Progress* progress = nullptr);
 

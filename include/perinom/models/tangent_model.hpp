@@ -1,0 +1,28 @@
+#pragma once
+/// @file What the Newton path needs from a model: the stiffness dF/du as block rows.
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "perinom/core/types.hpp"
+#include "perinom/models/model.hpp"
+
+namespace perinom {
+
+/// visit(i, cols, blocks): the d rows of particle i (d = dofs_per_particle()); cols the
+/// particles the rows couple to, sorted; blocks the d x d block of each column, row-major
+/// per column (blocks[(q d + a) d + b] = dF_{i a} / du_{cols[q] b}).
+using TangentRowVisitor =
+    std::function<void(std::size_t, const std::vector<ParticleId>&, const std::vector<double>&)>;
+
+/// A model whose stiffness K = dF/du can be visited row by row (StaticSystem assembles the
+/// Jacobian from these rows). visit_tangent_rows may call visit concurrently for distinct
+/// particles. A tangent that depends on u (plasticity) is evaluated by prepare_tangent(u)
+/// before each visit; for a tangent that does not depend on u (linear models) it does nothing.
+class TangentModel : public Model {
+ public:
+  virtual void visit_tangent_rows(const TangentRowVisitor& visit) const = 0;
+  virtual void prepare_tangent(const double* u) = 0;
+};
+
+}  // namespace perinom
