@@ -1,5 +1,6 @@
 // perinom check: validate a scene, build its operators, and print the plan and its memory.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "commands.hpp"
@@ -50,8 +51,15 @@ int check(const Options& opt) {
                 p.model->surface().band.size(), p.model->surface().interior.size(),
                 static_cast<std::size_t>(std::count(p.model->surface().on_surface.begin(),
                                                     p.model->surface().on_surface.end(), 1)));
+  if (const auto& dp = scene.plasticity)
+    std::printf("  material        drucker_prager, phi = %g deg, c = %g Pa, m0 = %g, d0 = %g, h = %g\n",
+                dp->friction_angle * 180.0 / M_PI, dp->cohesion, dp->m0, dp->d0, dp->h);
   std::printf("  constraints     %zu fixed degrees of freedom%s\n", p.loading.fixed.size(),
               p.loading.force.empty() ? "" : ", external forces");
+  for (std::size_t k = 0; k < scene.stages.size(); ++k)
+    std::printf("  stage %zu         %s: %d load steps, %zu fixed degrees of freedom%s\n", k + 1,
+                p.stages[k].name.c_str(), p.stages[k].steps, p.stages[k].loading.fixed.size(),
+                p.stages[k].loading.force.empty() ? "" : ", external forces");
   std::printf("  solver          %s\n", scene.solver.type.c_str());
   std::printf("  assembled operators and fields:\n");
   std::size_t total = 0;
@@ -79,7 +87,9 @@ int check(const Options& opt) {
                 "model)%s%s\n", newton ? "" : ", Newton Jacobian (no newton solver)",
                 scene.model.stabilization > 0.0 ? "" : ", plate stabilization (C_hg = 0)");
   else
-    std::printf("  not assembled: Hessian (no second-order model)%s%s\n",
+    std::printf("  not assembled: Hessian (%s)%s%s\n",
+                p.model->operator_order() == 2 ? "operator order 2 keeps the fit's gradient only"
+                                               : "no second-order model",
                 newton ? "" : ", Newton Jacobian (no newton solver)",
                 scene.model.stabilization > 0.0 ? "" : ", stabilization S (C_hg = 0)");
   std::printf("  total           %.2f MiB (%.1f bytes per bond)\n", mb(total), double(total) / p.bonds);

@@ -7,6 +7,8 @@
 #include "perinom/core/error.hpp"
 #include "perinom/core/parallel.hpp"
 #include "perinom/operators/bond_weights.hpp"
+#include "perinom/operators/second_order_operator.hpp"
+#include "perinom/operators/second_order_stabilization.hpp"
 #include "perinom/operators/stabilization.hpp"
 #include "perinom/operators/tangent_rows.hpp"
 
@@ -33,6 +35,7 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
                                          const LinearElastic& material,
                                          const CorrespondenceOptions& options, Surface surface)
     : dim_(cloud.dim),
+      order_(options.operator_order),
       formulation_(options.formulation),
       material_(material),
       surface_(std::move(surface)),
@@ -45,9 +48,12 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
       throw InputError("material.plane: Drucker-Prager plasticity needs plane strain in 2-D");
     plastic_.emplace(*options.plasticity, dim_, volume_.size());
   }
+  if (order_ != 1 && order_ != 2)
+    throw std::invalid_argument("CorrespondenceModel: operator_order must be 1 or 2");
   const BondWeights weights = bond_weights(cloud, families, options.influence);
-  G_ = GradientOperator(cloud, families, weights, options.weight_precision);
-  if (options.stabilization > 0.0) {
+  if (order_ == 2) build_second_order(cloud, families, weights, options);
+  else G_ = GradientOperator(cloud, families, weights, options.weight_precision);
+  if (options.stabilization > 0.0 && order_ == 1) {
     const auto c = stabilization_coefficients(weights, dim_, options.stabilization, material.mu());
     S_.emplace(cloud, families, weights, G_, c);
     const StabilizationStorage storage = options.stabilization_storage;
@@ -70,7 +76,30 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
   H_.resize(particles() * dim_ * dim_);
   Q_.resize(particles() * dim_ * dim_);
   if (formulation_ != Formulation::classical) P_.resize(particles() * dim_ * dim_);
-  if (S_) Su_.resize(particles() * dim_);
+  if (S_ || S_assembled_) Su_.resize(particles() * dim_);
+}
+
+void CorrespondenceModel::build_second_order(const PointCloud& cloud, const Families& families,
+                                             const BondWeights& weights, const CorrespondenceOptions& options) {
+  const bool stabilized = options.stabilization > 0.0;
+  const StabilizationStorage storage = options.stabilization_storage;
+  // The fused and matrix-free forms rest on the first-order identities (g = w V K^-1 xi and
+  // the closed-form rows of S0); the second-order S is stored.
+  if (stabilized && storage != StabilizationStorage::automatic && storage != StabilizationStorage::assembled)
+    throw InputError("model.stabilization_storage: with model.operator_order 2 the stabilization is the "
+                     "second-order operator energy, stored assembled (use auto or assembled)");
+  // The Hessian weights only enter the stabilization's z_ij (seed 002 eq. 35).
+  const SecondOrderOperator fit(cloud, families, weights, SecondOrderOptions{stabilized});
+  std::vector<double> g(fit.bonds() * dim_);
+  for (std::size_t k = 0; k < fit.bonds(); ++k)
+    for (int b = 0; b < dim_; ++b) g[k * dim_ + b] = fit.gradient_weight(static_cast<Offset>(k))[b];
+  G_ = GradientOperator(families, dim_, std::move(g), options.weight_precision);
+  if (!stabilized) return;
+  // The first-order scale: cv_i wv_ij = c_i V_i w_ij V_j with c_i = C_hg 2 mu / tr K_i.
+  std::vector<double> cv = stabilization_coefficients(weights, dim_, options.stabilization, material_.mu());
+  for (std::size_t i = 0; i < cv.size(); ++i) cv[i] *= volume_[i];
+  const SecondOrderStabilization S(cloud, weights, fit, std::move(cv));
+  S_assembled_ = assemble_second_order_stabilization(S, particles());
 }
 
 void CorrespondenceModel::gradient(const double* u, double* H) const { G_.apply(u, dim_, H); }
@@ -138,7 +167,7 @@ double CorrespondenceModel::energy(const double* u) {
   double w = parallel_sums<1>(n, [&](std::size_t i, double* acc) {
     acc[0] += volume_[i] * (plastic_ ? plastic_->stored_energy(i) : material_.energy(H_.data() + i * d2));
   })[0];
-  if (S_) {
+  if (S_ || S_assembled_) {
     // W_s = 1/2 u . S u, with S u = G^T(-B) + the direct bond term, or the stored S0.
     if (S_assembled_) {
       std::fill(Su_.begin(), Su_.end(), 0.0);
@@ -172,8 +201,10 @@ void CorrespondenceModel::visit_rows(
     const std::function<void(std::size_t, const std::vector<ParticleId>&,
                              const std::vector<double>&)>& visit) const {
   const StrongRows strong{surface_.in_band.data(), surface_.normal_over_h.data()};
+  // Order 1 adds S0's rows from S; order 2 has only the stored S0.
+  const ScalarCsr* S0 = !S_ && S_assembled_ ? &*S_assembled_ : nullptr;
   for_each_tangent_row(G_, C, stabilization(), visit,
-                       formulation_ == Formulation::classical ? nullptr : &strong);
+                       formulation_ == Formulation::classical ? nullptr : &strong, S0);
 }
 
 void CorrespondenceModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
@@ -220,7 +251,9 @@ std::vector<double> CorrespondenceModel::stiffness_row_sums() const {
 
 std::vector<std::pair<std::string, std::size_t>> CorrespondenceModel::memory() const {
   std::vector<std::pair<std::string, std::size_t>> m;
-  m.emplace_back("gradient operator G and G^T", G_.memory_bytes());
+  m.emplace_back(order_ == 2 ? "gradient G (second-order fit)" : "gradient operator G and G^T",
+                 G_.memory_bytes());
+  if (!S_ && S_assembled_) m.emplace_back("second-order stabilization S", S_assembled_->memory_bytes());
   if (S_) m.emplace_back(S_assembled_ ? "stabilization S (assembled)"
                         : F_        ? "stabilization (fused)"
                                     : "stabilization (matrix-free)",

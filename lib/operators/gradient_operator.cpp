@@ -1,6 +1,7 @@
 #include "perinom/operators/gradient_operator.hpp"
 
 #include <stdexcept>
+#include <string>
 
 #include "gather_kernels.hpp"
 
@@ -21,7 +22,6 @@ GradientOperator::GradientOperator(const PointCloud& cloud, const Families& fami
   const int d = dim_;
   const std::size_t n = rows();
   w_.resize(bonds() * d);
-  diag_.assign(n * d, 0.0);
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::size_t i = 0; i < n; ++i) {
     const double* Kinv = bw.shape_inverse.data() + i * d * d;
@@ -30,19 +30,40 @@ GradientOperator::GradientOperator(const PointCloud& cloud, const Families& fami
       for (int b = 0; b < d; ++b) {
         double g = 0.0;
         for (int c = 0; c < d; ++c) g += Kinv[b * d + c] * (cloud.x[j * d + c] - cloud.x[i * d + c]);
-        // The diagonal sums the weights as stored, so G of a constant is zero either way.
         w_[k * d + b] = single ? double(float(bw.wv[k] * g)) : bw.wv[k] * g;
-        diag_[i * d + b] -= w_[k * d + b];
       }
     }
   }
+  finish(families);
+}
+
+GradientOperator::GradientOperator(const Families& families, int dim, std::vector<double> g,
+                                   WeightPrecision precision)
+    : dim_(dim), precision_(precision), offsets_(families.offsets), cols_(families.neighbors), w_(std::move(g)) {
+  if (w_.size() != bonds() * dim)
+    throw std::invalid_argument("GradientOperator: " + std::to_string(w_.size()) + " weights for " +
+                                std::to_string(bonds()) + " bonds in " + std::to_string(dim) + "-D");
+  if (precision == WeightPrecision::float32)
+    for (double& v : w_) v = double(float(v));
+  finish(families);
+}
+
+void GradientOperator::finish(const Families& families) {
+  const int d = dim_;
+  const std::size_t n = rows();
+  // The diagonal sums the weights as stored, so G of a constant is zero either way.
+  diag_.assign(n * d, 0.0);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < n; ++i)
+    for (Offset k = offsets_[i]; k < offsets_[i + 1]; ++k)
+      for (int b = 0; b < d; ++b) diag_[i * d + b] -= w_[k * d + b];
   DualSupport dual = dual_support(families);
   t_offsets_ = std::move(dual.offsets);
   t_cols_ = std::move(dual.neighbors);
   t_w_.resize(bonds() * d);
   for (std::size_t s = 0; s < dual.bond.size(); ++s)
     for (int b = 0; b < d; ++b) t_w_[s * d + b] = w_[dual.bond[s] * d + b];
-  if (single) {
+  if (precision_ == WeightPrecision::float32) {
     w32_.assign(w_.begin(), w_.end());
     t_w32_.assign(t_w_.begin(), t_w_.end());
     std::vector<double>().swap(w_);

@@ -123,6 +123,12 @@ std::size_t SecondOrderStabilization::memory_bytes() const {
   return (x_.size() + cv_.size() + wv_.size() + t_wv_.size() + b_.size() + r_.size()) * sizeof(double);
 }
 
+ScalarCsr assemble_second_order_stabilization(const SecondOrderStabilization& S, std::size_t n) {
+  return assemble_rows(n, [&S](std::size_t r, RowAccumulator& acc) {
+    S.add_row(r, [&acc](ParticleId c, double v) { *acc.at(c) += v; });
+  });
+}
+
 std::vector<double> second_order_stabilization_coefficients(const PointCloud& cloud,
                                                             const SecondOrderOperator& op,
                                                             const BondWeights& weights, double c_hg,

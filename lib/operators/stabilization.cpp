@@ -127,29 +127,7 @@ std::size_t Stabilization::memory_bytes() const {
 }
 
 ScalarCsr assemble_stabilization(const Stabilization& S, std::size_t n) {
-  std::vector<std::vector<ParticleId>> row_cols(n);
-  std::vector<std::vector<double>> row_vals(n);
-#pragma omp parallel
-  {
-    RowAccumulator acc(n, 1);
-#pragma omp for schedule(dynamic, 64)
-    for (std::size_t r = 0; r < n; ++r) {
-      S.add_row(r, acc, 1);
-      acc.finish();
-      row_cols[r] = acc.cols();
-      row_vals[r].resize(row_cols[r].size());
-      for (std::size_t k = 0; k < row_cols[r].size(); ++k) row_vals[r][k] = *acc.block(k);
-      acc.clear();
-    }
-  }
-  ScalarCsr A;
-  A.offsets.assign(n + 1, 0);
-  for (std::size_t r = 0; r < n; ++r) A.offsets[r + 1] = A.offsets[r] + row_cols[r].size();
-  for (std::size_t r = 0; r < n; ++r) {
-    A.cols.insert(A.cols.end(), row_cols[r].begin(), row_cols[r].end());
-    A.values.insert(A.values.end(), row_vals[r].begin(), row_vals[r].end());
-  }
-  return A;
+  return assemble_rows(n, [&S](std::size_t r, RowAccumulator& acc) { S.add_row(r, acc, 1); });
 }
 
 std::vector<double> stabilization_coefficients(const BondWeights& weights, int d, double c_hg,

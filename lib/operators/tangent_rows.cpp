@@ -8,7 +8,7 @@ void for_each_tangent_row(
     const GradientOperator& G, const PointwiseTangent& tangent, const Stabilization* S,
     const std::function<void(std::size_t, const std::vector<ParticleId>&,
                              const std::vector<double>&)>& visit,
-    const StrongRows* strong) {
+    const StrongRows* strong, const ScalarCsr* S0) {
   const int d = G.dim(), d2 = d * d, d3 = d2 * d;
   const std::size_t n = G.rows();
   const auto& off = G.offsets();
@@ -63,6 +63,11 @@ void for_each_tangent_row(
         }
       }
       if (S) S->add_row(i, acc, d);
+      if (S0)
+        for (Offset k = S0->offsets[i]; k < S0->offsets[i + 1]; ++k) {
+          double* block = acc.at(S0->cols[k]);
+          for (int a = 0; a < d; ++a) block[a * (d + 1)] += S0->values[k];
+        }
       acc.finish();
       blocks.resize(acc.cols().size() * d2);
       for (std::size_t k = 0; k < acc.cols().size(); ++k)

@@ -3,7 +3,7 @@
 namespace perinom::detail {
 
 void read_plate_model(Fields& f, Scene& s) {
-  for (const char* k : {"formulation", "stabilization_storage", "weight_precision"})
+  for (const char* k : {"formulation", "stabilization_storage", "weight_precision", "operator_order"})
     if (f.has(k)) f.fail(k, "is a correspondence option; a thin_plate has only stabilization");
   s.model.stabilization = f.number("stabilization", s.model.stabilization);
   if (s.model.stabilization < 0.0) f.fail("stabilization", "must be zero or positive");

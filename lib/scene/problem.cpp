@@ -156,6 +156,7 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
   CorrespondenceOptions opt;
   opt.influence = s.discretization.weight;
   opt.stabilization = s.model.stabilization;
+  opt.operator_order = s.model.operator_order;
   parse_stabilization_storage(s.model.stabilization_storage, opt.stabilization_storage);
   opt.weight_precision =
       s.model.weight_precision == "single" ? WeightPrecision::float32 : WeightPrecision::float64;

@@ -143,6 +143,11 @@ void read_model(Fields f, Scene& s) {
   s.model.weight_precision = f.text("weight_precision", "double");
   if (s.model.weight_precision != "double" && s.model.weight_precision != "single")
     f.fail("weight_precision", "must be double or single");
+  s.model.operator_order = f.small_integer("operator_order", 1);
+  if (s.model.operator_order != 1 && s.model.operator_order != 2) f.fail("operator_order", "must be 1 or 2");
+  if (s.model.operator_order == 2 && s.model.stabilization > 0.0 && storage != StabilizationStorage::automatic &&
+      storage != StabilizationStorage::assembled)
+    f.fail("stabilization_storage", "with operator_order 2 the stabilization is stored assembled (use auto or assembled)");
   f.finish();
 }
 

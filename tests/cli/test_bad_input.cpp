@@ -374,6 +374,21 @@ TEST_CASE("the fused stabilization with a neighbour count is bad input", "[cli]"
   require_rejected(s, {"model.stabilization_storage: fused needs symmetric families"});
 }
 
+TEST_CASE("an operator order other than 1 or 2 is named", "[cli]") {
+  const std::string s = with(tiny_scene, "solver:\n", "model:\n  operator_order: 3\nsolver:\n");
+  require_rejected(s, {at_line(s, "operator_order:", "model.operator_order: must be 1 or 2")});
+}
+
+TEST_CASE("a fractional operator order is named", "[cli]") {
+  const std::string s = with(tiny_scene, "solver:\n", "model:\n  operator_order: 1.5\nsolver:\n");
+  require_rejected(s, {at_line(s, "operator_order:", "model.operator_order:")});
+}
+
+TEST_CASE("a first-order stabilization storage with operator order 2 is named", "[cli]") {
+  const std::string s = with(tiny_scene, "solver:\n", "model:\n  operator_order: 2\n  stabilization_storage: fused\nsolver:\n");
+  require_rejected(s, {"model.stabilization_storage: with operator_order 2 the stabilization is stored assembled"});
+}
+
 TEST_CASE("an unknown --storage for bench is bad input", "[cli]") {
   ScratchDir dir;
   require_one_clear_error(perinom(dir, "bench force --dimension 2 --n 4 --storage packed"), {"--storage"});

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "perinom/materials/material_point.hpp"
 #include "perinom/scene/problem.hpp"
@@ -91,39 +92,42 @@ TEST_CASE("LBC flags in a correction round and commits only after it", "[load_pa
     if (r != onset) CHECK(rep.history.at(r, 4) == 1.0);
 }
 
-TEST_CASE("the plastic model's tangent is the derivative of its force", "[load_path]") {
-  // A plastic state from five LBC steps (all particles yielded), then a random direction.
-  Problem p = biaxial(5, "lbc");
-  std::vector<double> u;
-  REQUIRE(solve(p, u).converged);
-  CorrespondenceModel& m = *p.model;
-  m.plastic()->set_mode(PlasticMode::return_map);
-  const std::size_t n = m.dofs();
-  std::vector<double> du(n), up(n), um(n), fp(n), fm(n), Kdu(n, 0.0);
-  for (std::size_t k = 0; k < n; ++k) du[k] = 1e-6 * std::sin(1.3 * k + 0.2);
-  // Evaluate at u + a small plastic increment, so the return map is active and smooth.
-  std::vector<double> u1(u);
-  for (std::size_t k = 0; k < n; ++k) u1[k] = 1.001 * u[k];
-  m.prepare_tangent(u1.data());
-  const int d = m.dofs_per_particle();
-  m.visit_tangent_rows([&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
-    for (std::size_t q = 0; q < cols.size(); ++q)
-      for (int a = 0; a < d; ++a)
-        for (int b = 0; b < d; ++b) Kdu[i * d + a] += blocks[(q * d + a) * d + b] * du[cols[q] * d + b];
-  });
-  const double h = 1e-3;
-  for (std::size_t k = 0; k < n; ++k) up[k] = u1[k] + h * du[k], um[k] = u1[k] - h * du[k];
-  m.internal_force(up.data(), fp.data());
-  m.internal_force(um.data(), fm.data());
-  double err = 0.0, ref = 0.0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double fd = (fp[k] - fm[k]) / (2.0 * h);
-    err = std::max(err, std::abs(fd - Kdu[k]));
-    ref = std::max(ref, std::abs(fd));
+TEST_CASE("the plastic model's tangent is the derivative of its force, for either operator order", "[load_path]") {
+  for (const int order : {1, 2}) {
+    INFO("model.operator_order " << order);
+    // A plastic state from five LBC steps (all particles yielded), then a random direction.
+    Problem p = biaxial(5, "lbc", {"model.operator_order=" + std::to_string(order)});
+    std::vector<double> u;
+    REQUIRE(solve(p, u).converged);
+    CorrespondenceModel& m = *p.model;
+    m.plastic()->set_mode(PlasticMode::return_map);
+    const std::size_t n = m.dofs();
+    std::vector<double> du(n), up(n), um(n), fp(n), fm(n), Kdu(n, 0.0);
+    for (std::size_t k = 0; k < n; ++k) du[k] = 1e-6 * std::sin(1.3 * k + 0.2);
+    // Evaluate at u + a small plastic increment, so the return map is active and smooth.
+    std::vector<double> u1(u);
+    for (std::size_t k = 0; k < n; ++k) u1[k] = 1.001 * u[k];
+    m.prepare_tangent(u1.data());
+    const int d = m.dofs_per_particle();
+    m.visit_tangent_rows([&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
+      for (std::size_t q = 0; q < cols.size(); ++q)
+        for (int a = 0; a < d; ++a)
+          for (int b = 0; b < d; ++b) Kdu[i * d + a] += blocks[(q * d + a) * d + b] * du[cols[q] * d + b];
+    });
+    const double h = 1e-3;
+    for (std::size_t k = 0; k < n; ++k) up[k] = u1[k] + h * du[k], um[k] = u1[k] - h * du[k];
+    m.internal_force(up.data(), fp.data());
+    m.internal_force(um.data(), fm.data());
+    double err = 0.0, ref = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double fd = (fp[k] - fm[k]) / (2.0 * h);
+      err = std::max(err, std::abs(fd - Kdu[k]));
+      ref = std::max(ref, std::abs(fd));
+    }
+    INFO("max |K du - FD| = " << err << " of " << ref);
+    CHECK(err < 1e-6 * ref);
+    CHECK(ref > 0.0);
   }
-  INFO("max |K du - FD| = " << err << " of " << ref);
-  CHECK(err < 1e-6 * ref);
-  CHECK(ref > 0.0);
 }
 
 TEST_CASE("a stage starts where the previous one ended", "[load_path]") {

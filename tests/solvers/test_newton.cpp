@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include "../support/adr_and_newton.hpp"
 #include "../support/clouds.hpp"
 #include "../support/direct_solve.hpp"
 #include "perinom/core/error.hpp"
@@ -109,16 +110,9 @@ TEST_CASE("load steps reuse the factorization and end at the same answer", "[sol
 
 TEST_CASE("ADR and Newton agree on the demo scene at a tight ADR tolerance", "[solvers][newton]") {
   Problem p = build_problem(read_scene(PERINOM_SOURCE_DIR "/examples/uniaxial_compression.yaml"));
-  std::vector<double> ua, un;
-  AdrOptions adr;
-  adr.tolerance = 1e-11;
-  adr.displacement_tolerance = 1e-13;
-  REQUIRE(solve_adr(*p.model, p.loading, adr, ua).converged);
-  REQUIRE(solve_newton(*p.model, p.loading, NewtonOptions{}, un).converged);
-  double d2 = 0.0, n2 = 0.0;
-  for (std::size_t k = 0; k < ua.size(); ++k) d2 += (ua[k] - un[k]) * (ua[k] - un[k]), n2 += un[k] * un[k];
-  WARN("demo: ADR (tolerance 1e-11) and Newton differ by " << std::sqrt(d2 / n2) << " (relative L2)");
-  CHECK(std::sqrt(d2 / n2) < 1e-6);
+  const auto r = test::adr_and_newton(*p.model, p.loading);
+  WARN("demo: ADR (tolerance 1e-11) and Newton differ by " << r.relative_l2 << " (relative L2)");
+  CHECK(r.relative_l2 < 1e-6);
 }
 
 TEST_CASE("a body free to move rigidly is reported as a missing boundary condition", "[solvers][newton]") {
@@ -174,18 +168,10 @@ TEST_CASE("Newton's plate deflection equals ADR's on the 21 x 21 simply supporte
   for (const char* support : {"simply_supported", "clamped"}) {
     Problem p = plate_21(support);
     REQUIRE(p.cloud.size() == 21 * 21);
-    std::vector<double> wa, wn;
-    AdrOptions adr;
-    adr.tolerance = 1e-11, adr.displacement_tolerance = 1e-13;
-    REQUIRE(solve_adr(p.physics(), p.loading, adr, wa).converged);
-    const SolveReport rep = solve_newton(p.physics(), p.loading, NewtonOptions{}, wn);
-    INFO(support << ": " << rep.failure);
-    REQUIRE(rep.converged);
-    CHECK(rep.iterations == 1);  // the plate is linear
-    double d2 = 0.0, n2 = 0.0;
-    for (std::size_t k = 0; k < wa.size(); ++k) d2 += (wa[k] - wn[k]) * (wa[k] - wn[k]), n2 += wn[k] * wn[k];
-    WARN(support << " plate: ADR (tolerance 1e-11) and Newton differ by " << std::sqrt(d2 / n2) << " (relative L2)");
-    CHECK(std::sqrt(d2 / n2) < 1e-6);
-    CHECK(relative_difference(wa, wn) < 1e-6);
+    const auto r = test::adr_and_newton(p.physics(), p.loading);
+    CHECK(r.newton_iterations == 1);  // the plate is linear
+    WARN(support << " plate: ADR (tolerance 1e-11) and Newton differ by " << r.relative_l2 << " (relative L2)");
+    CHECK(r.relative_l2 < 1e-6);
+    CHECK(relative_difference(r.adr, r.newton) < 1e-6);
   }
 }

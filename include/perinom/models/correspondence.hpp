@@ -17,6 +17,7 @@
 #include "perinom/models/plastic_points.hpp"
 #include "perinom/neighbors/families.hpp"
 #include "perinom/operators/gradient_operator.hpp"
+#include "perinom/operators/bond_weights.hpp"
 #include "perinom/operators/influence.hpp"
 #include "perinom/operators/fused_stabilization.hpp"
 #include "perinom/operators/stabilization.hpp"
@@ -47,6 +48,12 @@ struct CorrespondenceOptions {
   StabilizationStorage stabilization_storage = StabilizationStorage::automatic;
   /// Storage of G's weights (the stabilization and tangents use them as stored).
   WeightPrecision weight_precision = WeightPrecision::float64;
+  /// 1: G from the first-order fit (THEORY sec. 2), stabilized by S (sec. 4).
+  /// 2: G from the gradient weights of the second-order fit (sec. 6; exact for quadratic
+  ///    fields, boundary particles included), stabilized by the second-order operator energy
+  ///    (seed 002 eq. 35-39, second_order_stabilization.hpp) stored assembled; the fit's
+  ///    Hessian weights serve only to assemble that S and are not kept.
+  int operator_order = 1;
   /// A Drucker-Prager law in place of the linear elastic one (its E and nu must be the
   /// material's; the stabilization and the explicit solvers' mass use the elastic moduli).
   std::optional<DruckerPrager> plasticity;
@@ -54,7 +61,8 @@ struct CorrespondenceOptions {
 
 class CorrespondenceModel : public TangentModel {
  public:
-  /// Assembles G (and S when C_hg > 0) once. Throws InputError for a singular shape tensor.
+  /// Assembles G (and S when C_hg > 0) once. Throws InputError for a singular shape tensor
+  /// (or second-order fit), or a stabilization storage the operator order cannot use.
   /// The improved and strong formulations need the surface data (find_surface).
   CorrespondenceModel(const PointCloud& cloud, const Families& families,
                       const LinearElastic& material, const CorrespondenceOptions& options,
@@ -91,11 +99,15 @@ class CorrespondenceModel : public TangentModel {
   void prepare_tangent(const double* u) override;
 
   const GradientOperator& G() const { return G_; }
-  /// The stabilization operator (matrix-free), or nullptr when C_hg = 0.
+  /// 1 or 2: the order of the fit G comes from (CorrespondenceOptions::operator_order).
+  int operator_order() const { return order_; }
+  /// The first-order stabilization operator (matrix-free), or nullptr when C_hg = 0 or with
+  /// operator order 2 (whose S is assembled_stabilization()).
   const Stabilization* stabilization() const { return S_ ? &*S_ : nullptr; }
   /// True when S is applied inside the products of G (FusedStabilization).
   bool fused_stabilization() const { return F_.has_value(); }
-  /// The stored S0, or nullptr (C_hg = 0, or a fused or matrix-free stabilization).
+  /// The stored S0, or nullptr (C_hg = 0, or a fused or matrix-free stabilization); with
+  /// operator order 2 the second-order S.
   const ScalarCsr* assembled_stabilization() const { return S_assembled_ ? &*S_assembled_ : nullptr; }
   const LinearElastic& material() const { return material_; }
   const std::vector<double>& volume() const { return volume_; }
@@ -105,6 +117,7 @@ class CorrespondenceModel : public TangentModel {
 
  private:
   int dim_;
+  int order_;
   Formulation formulation_;
   LinearElastic material_;
   Surface surface_;
@@ -118,6 +131,8 @@ class CorrespondenceModel : public TangentModel {
   std::vector<double> lap_;          // fused: the weighted Laplacian of u
   std::optional<PlasticPoints> plastic_;
   std::vector<double> C_;            // plasticity: per-particle tangents (prepare_tangent)
+  void build_second_order(const PointCloud& cloud, const Families& families, const BondWeights& weights,
+                          const CorrespondenceOptions& options);
   void visit_rows(const PointwiseTangent& C,
                   const std::function<void(std::size_t, const std::vector<ParticleId>&,
                                            const std::vector<double>&)>& visit) const;

@@ -29,6 +29,11 @@ class GradientOperator {
   /// Assembles G from the families and their bond weights.
   GradientOperator(const PointCloud& cloud, const Families& families, const BondWeights& weights,
                    WeightPrecision precision = WeightPrecision::float64);
+  /// G from given weights: g[k*dim + b] for bond k of the families (row order), e.g. the
+  /// gradient weights of the second-order fit (SecondOrderOperator::gradient_weight); the
+  /// diagonal, the transpose and the products are those of the first-order G.
+  GradientOperator(const Families& families, int dim, std::vector<double> g,
+                   WeightPrecision precision = WeightPrecision::float64);
 
   int dim() const { return dim_; }
   std::size_t rows() const { return offsets_.size() - 1; }
@@ -81,6 +86,9 @@ class GradientOperator {
     for (int b = 0; b < dim_; ++b) g[b] = w32.empty() ? w64[k * dim_ + b] : double(w32[k * dim_ + b]);
     return g;
   }
+
+  /// From w_ (rounded to the precision already): the diagonal, the transpose, the float32 copies.
+  void finish(const Families& families);
 
   int dim_ = 0;
   WeightPrecision precision_ = WeightPrecision::float64;

@@ -1,9 +1,11 @@
 #pragma once
 /// @file A scalar sparse matrix in CSR form, applied to every component of a vector field.
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "perinom/core/types.hpp"
+#include "perinom/operators/row_accumulator.hpp"
 
 namespace perinom {
 
@@ -21,5 +23,9 @@ struct ScalarCsr {
   /// A_ij, or 0 if (i, j) is not stored.
   double at(std::size_t i, std::size_t j) const;
 };
+
+/// Assembles an n x n ScalarCsr row by row, in parallel: add_row(r, acc) adds row r's
+/// entries to acc (a RowAccumulator with one value per column; columns may repeat).
+ScalarCsr assemble_rows(std::size_t n, const std::function<void(std::size_t, RowAccumulator&)>& add_row);
 
 }  // namespace perinom

@@ -6,6 +6,7 @@
 
 #include "perinom/geometry/point_cloud.hpp"
 #include "perinom/operators/bond_weights.hpp"
+#include "perinom/operators/scalar_csr.hpp"
 #include "perinom/operators/second_order_operator.hpp"
 
 namespace perinom {
@@ -41,6 +42,11 @@ class SecondOrderStabilization {
   std::vector<double> x_, cv_, wv_, t_wv_, b_;  // b_: sum_j wv_ij p_ij (nb per particle)
   std::vector<double> r_;                       // workspace: cv_i sum_j wv_ij z_ij
 };
+
+/// S assembled (symmetric, positive semi-definite, zero on quadratic fields), row by row from
+/// add_row: the form the second-order correspondence model applies to each displacement
+/// component (S (x) I_d), after which the fit's Hessian weights are no longer needed.
+ScalarCsr assemble_second_order_stabilization(const SecondOrderStabilization& S, std::size_t particles);
 
 /// cv_i = C_hg D area_i / (sum_j wv_ij |xi_ij|^4 / 4): W_s is then about C_hg times the bending
 /// energy 1/2 D |kappa|^2 area_i of a curvature the fit misses (z ~ kappa |xi|^2 / 2).

@@ -33,11 +33,12 @@ struct StrongRows {
 /// given) takes its sources from row i of G instead: -V_i G_b[i][m] for m in {i} + H_i,
 /// plus V_i m_i[b] at m = i. Rows are computed in parallel;
 /// visit is called concurrently from several threads with distinct i.
-/// Cost: sum over m in {i} + H'_i of |H_m| d^3 per row.
+/// Cost: sum over m in {i} + H'_i of |H_m| d^3 per row. A stored S0 (e.g. the second-order
+/// stabilization's) may be given in place of S; its rows are added the same way.
 void for_each_tangent_row(
     const GradientOperator& G, const PointwiseTangent& tangent, const Stabilization* S,
     const std::function<void(std::size_t, const std::vector<ParticleId>&,
                              const std::vector<double>&)>& visit,
-    const StrongRows* strong = nullptr);
+    const StrongRows* strong = nullptr, const ScalarCsr* S0 = nullptr);
 
 }  // namespace perinom
