@@ -9,6 +9,7 @@
 #include "perinom/models/correspondence.hpp"
 #include "perinom/scene/scene.hpp"
 #include "plate_keys.hpp"
+#include "scene_sections.hpp"
 #include "yaml_fields.hpp"
 
 namespace perinom {
@@ -16,10 +17,10 @@ namespace {
 
 using detail::Fields;
 
-int axis_of(const std::string& c, int dim) {
-  const int a = (c == "x") ? 0 : (c == "y") ? 1 : (c == "z") ? 2 : -1;
-  return a < dim ? a : -1;
-}
+using detail::axis_of;
+using detail::read_boundary;
+using detail::read_probes;
+using detail::read_stages;
 
 void read_geometry(Fields f, Scene& s) {
   auto& g = s.geometry;
@@ -151,93 +152,6 @@ void read_model(Fields f, Scene& s) {
   f.finish();
 }
 
-Region read_region(Fields& f, const Scene& s) {
-  Region r;
-  const YAML::Node n = f.node("region");
-  f.mark("region");
-  if (!n.IsDefined() || n.IsNull()) f.fail("region", "required key is missing");
-  if (n.IsScalar() && n.as<std::string>() == "all") {
-    r.is_side = false;
-    r.min.fill(-INFINITY);
-    r.max.fill(INFINITY);
-    return r;
-  }
-  if (n.IsScalar()) {
-    r.is_side = true;
-    if (!parse_side(n.as<std::string>(), s.dim, r.side))
-      f.fail("region", "unknown side '" + n.as<std::string>() +
-                           "' (left, right, bottom, top" + (s.dim == 3 ? ", front, back" : "") +
-                           ", or xmin ... zmax)");
-    return r;
-  }
-  Fields rf(n, f.key("region"), f.source());
-  Fields box = rf.map("box");
-  r.is_side = false;
-  r.min = box.vector("min", s.dim);
-  r.max = box.vector("max", s.dim);
-  box.finish();
-  rf.finish();
-  return r;
-}
-
-std::vector<BoundarySpec> read_boundary(const std::vector<YAML::Node>& items, const std::string& source,
-                                        const Scene& s, const std::string& key = "boundary") {
-  std::vector<BoundarySpec> out;
-  for (std::size_t k = 0; k < items.size(); ++k) {
-    Fields f(items[k], key + "[" + std::to_string(k) + "]", source);
-    BoundarySpec b;
-    b.where = detail::where(source, items[k]) + key + "[" + std::to_string(k) + "]";
-    b.region = read_region(f, s);
-    for (const auto& c : f.list("fix")) {
-      const int a = c.IsScalar() ? axis_of(c.as<std::string>(), s.dim) : -1;
-      if (a < 0) f.fail("fix", "components must be among x, y" + std::string(s.dim == 3 ? ", z" : ""));
-      b.fix[a] = true;
-    }
-    if (f.has("displacement")) {
-      Fields d = f.map("displacement");
-      for (const char* c : {"x", "y", "z"}) {
-        const int a = axis_of(c, s.dim);
-        if (a >= 0 && d.has(c)) b.displacement[a] = d.number(c);
-      }
-      d.finish();
-    }
-    if (s.thin_plate()) {
-      detail::read_plate_boundary(f, b);
-      out.push_back(b);
-      continue;
-    }
-    if (f.has("support")) f.fail("support", "edge supports belong to model.type thin_plate (here: fix or displacement)");
-    if (f.has("traction")) b.traction = f.vector("traction", s.dim);
-    if (f.has("pressure")) b.pressure = f.number("pressure");
-    const std::string at = f.text("at", "layer");
-    if (at != "layer" && at != "face") f.fail("at", "must be layer or face");
-    b.at_face = at == "face";
-    if (b.at_face && !b.region.is_side) f.fail("at", "face needs a side region (top, left, ...)");
-    if ((b.traction || b.pressure) && !b.region.is_side)
-      f.fail("region", "a traction or pressure acts on a side of the box (top, left, ...)");
-    f.finish();
-    out.push_back(b);
-  }
-  return out;
-}
-
-void read_stages(const std::vector<YAML::Node>& items, const std::string& source, Scene& s) {
-  if (!items.empty() && s.thin_plate())
-    throw InputError(detail::where(source, items[0]) + "stages: a thin_plate is loaded in one stage (solver.load_steps)");
-  for (std::size_t k = 0; k < items.size(); ++k) {
-    const std::string key = "stages[" + std::to_string(k) + "]";
-    Fields f(items[k], key, source);
-    StageSpec st;
-    st.where = detail::where(source, items[k]) + key;
-    st.name = f.text("name", "stage " + std::to_string(k + 1));
-    st.steps = f.small_integer("steps", 1);
-    if (st.steps < 1) f.fail("steps", "must be at least 1");
-    st.boundary = read_boundary(f.list("boundary"), source, s, key + ".boundary");
-    f.finish();
-    s.stages.push_back(st);
-  }
-}
-
 void read_solver(Fields f, Scene& s) {
   auto& v = s.solver;
   v.type = f.text("type", s.plasticity ? "lbc" : "adr");
@@ -289,64 +203,6 @@ void read_solver(Fields f, Scene& s) {
   if (v.max_rounds < 1) f.fail("max_rounds", "must be at least 1");
   if (newton && v.max_iterations > 1000000000) f.fail("max_iterations", "is out of range");
   f.finish();
-}
-
-void read_probes(const std::vector<YAML::Node>& items, const std::string& source, Scene& s) {
-  for (std::size_t k = 0; k < items.size(); ++k) {
-    Fields f(items[k], "probes[" + std::to_string(k) + "]", source);
-    ProbeSpec p;
-    p.where = detail::where(source, items[k]) + "probes[" + std::to_string(k) + "]";
-    p.name = f.text("name");
-    if (p.name.empty() || p.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != std::string::npos)
-      f.fail("name", "must be made of letters, digits, '_', '-' and '.' (it names a file)");
-    for (const auto& q : s.probes)
-      if (q.name == p.name) f.fail("name", "another probe is already named '" + p.name + "'");
-    p.is_line = f.has("line");
-    if (p.is_line == f.has("point")) f.fail("name", "a probe has exactly one of point or line");
-    if (p.is_line) {
-      Fields l = f.map("line");
-      p.from = l.vector("from", s.dim);
-      p.to = l.vector("to", s.dim);
-      l.finish();
-    } else {
-      p.point = f.vector("point", s.dim);
-    }
-    p.field = f.text("field", s.thin_plate() ? "deflection" : "displacement");
-    if ((p.field == "deflection") != s.thin_plate())
-      f.fail("field", s.thin_plate() ? "a thin_plate probe measures the deflection (field: deflection)"
-                                     : "deflection is the field of a thin_plate (model.type: thin_plate)");
-    if (f.has("reconstruct")) {
-      f.mark("reconstruct");
-      try {
-        p.reconstruct = f.node("reconstruct").as<bool>();
-      } catch (const YAML::Exception&) {
-        f.fail("reconstruct", "must be true or false");
-      }
-      if (p.reconstruct && (p.is_line || p.field != "displacement"))
-        f.fail("reconstruct", "only point probes of the displacement are reconstructed");
-    }
-    if (p.field == "deflection") {
-      if (f.has("component")) f.fail("component", "a deflection probe has no component");
-    } else if (p.field == "displacement") {
-      p.component = f.text("component", p.is_line ? "x" : "");
-      if (axis_of(p.component, s.dim) < 0) f.fail("component", "must be x, y" + std::string(s.dim == 3 ? " or z" : ""));
-    } else if (p.field == "stress") {
-      p.component = f.text("component");
-      const std::set<std::string> ok = {"xx", "yy", "zz", "xy", "yz", "xz", "yx", "zy", "zx"};
-      if (!ok.count(p.component) || (s.dim == 2 && p.component.find('z') != std::string::npos &&
-                                     p.component != "zz"))
-        f.fail("component", s.dim == 2 ? "must be xx, yy, zz or xy" : "must be xx, yy, zz, xy, yz or xz");
-    } else if (p.field == "von_mises" || p.field == "mean_stress" || p.field == "equivalent_strain" ||
-               p.field == "eq_plastic_strain") {
-      if (f.has("component")) f.fail("component", "a " + p.field + " probe has no component");
-      if (p.field == "eq_plastic_strain" && !s.plasticity)
-        f.fail("field", "eq_plastic_strain needs a plastic material (material.type: drucker_prager)");
-    } else {
-      f.fail("field", "must be displacement, stress, von_mises, mean_stress, equivalent_strain or eq_plastic_strain");
-    }
-    f.finish();
-    s.probes.push_back(p);
-  }
 }
 
 }  // namespace

@@ -1,0 +1,22 @@
+#pragma once
+// The scene reader's list sections, read strictly like the rest (yaml_fields.hpp).
+#include <string>
+#include <vector>
+
+#include "perinom/scene/scene.hpp"
+#include "yaml_fields.hpp"
+
+namespace perinom::detail {
+
+/// The axis index of "x", "y", "z" in a dim-dimensional scene, or -1.
+int axis_of(const std::string& component, int dim);
+/// The items of a boundary list; key names the list in messages ("boundary",
+/// "stages[1].boundary").
+std::vector<BoundarySpec> read_boundary(const std::vector<YAML::Node>& items, const std::string& source,
+                                        const Scene& s, const std::string& key = "boundary");
+/// `stages`: each with its name, steps and boundary list.
+void read_stages(const std::vector<YAML::Node>& items, const std::string& source, Scene& s);
+/// `probes`.
+void read_probes(const std::vector<YAML::Node>& items, const std::string& source, Scene& s);
+
+}  // namespace perinom::detail
