@@ -46,7 +46,7 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
   if (options.plasticity) {
     if (material.plane == PlaneCondition::stress)
       throw InputError("material.plane: Drucker-Prager plasticity needs plane strain in 2-D");
-    plastic_.emplace(*options.plasticity, dim_, volume_.size());
+    plastic_.emplace(*options.plasticity, dim_, volume_.size(), options.kinematics);
   }
   if (order_ != 1 && order_ != 2)
     throw std::invalid_argument("CorrespondenceModel: operator_order must be 1 or 2");
@@ -282,7 +282,7 @@ void CorrespondenceModel::stress3(const double* u, std::vector<double>& sigma) c
       continue;
     }
     const auto point = plastic_->evaluate(i, H.data() + i * d2);
-    std::copy(point.law.sigma, point.law.sigma + 9, sigma.data() + i * 9);
+    plastic_->cauchy(point, sigma.data() + i * 9);
   }
 }
 

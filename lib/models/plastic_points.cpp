@@ -1,12 +1,73 @@
 #include "perinom/models/plastic_points.hpp"
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace perinom {
 
-PlasticPoints::PlasticPoints(const DruckerPrager& law, int dim, std::size_t particles)
-    : law_(law), dim_(dim), committed_(particles), trial_(particles), flagged_(particles, 0) {}
+PlasticPoints::PlasticPoints(const DruckerPrager& law, int dim, std::size_t particles, Kinematics kinematics)
+    : law_(law), dim_(dim), kinematics_(kinematics), committed_(particles), trial_(particles), flagged_(particles, 0) {
+  if (kinematics_ == Kinematics::finite_rotation)
+    for (auto* points : {&committed_, &trial_})
+      for (auto& p : *points) p.eps[0] = p.eps[4] = p.eps[8] = 1.0;  // F = I
+}
+
+namespace {
+
+using Mat3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+
+/// The rotation of F's polar decomposition F = R U.
+Mat3 rotation(const Mat3& F) {
+  const Eigen::JacobiSVD<Mat3> svd(F, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Mat3 R = svd.matrixU() * svd.matrixV().transpose();
+  return R;
+}
+
+}  // namespace
+
+void PlasticPoints::increment(const Point& n, const double* H, Point& out, double* deps) const {
+  strain(H, out.eps);
+  if (kinematics_ == Kinematics::small_strain) {
+    for (int k = 0; k < 9; ++k) deps[k] = out.eps[k] - n.eps[k];
+    return;
+  }
+  // F = I + grad u (plane strain: F_zz = 1, no out-of-plane shear).
+  const int d = dim_;
+  Mat3 F = Mat3::Identity();
+  for (int a = 0; a < d; ++a)
+    for (int b = 0; b < d; ++b) F(a, b) += H[a * d + b];
+  const Mat3 Fn = Eigen::Map<const Mat3>(n.eps);
+  const Mat3 Fm = 0.5 * (F + Fn);
+  const Mat3 L = (F - Fn) * Fm.inverse();
+  const Mat3 Rm = rotation(Fm);
+  const Mat3 D = Rm.transpose() * (0.5 * (L + L.transpose())) * Rm;
+  Eigen::Map<Mat3>{out.eps} = F;
+  Eigen::Map<Mat3>{deps} = D;
+}
+
+void PlasticPoints::cauchy(const Point& point, double* sigma) const {
+  if (kinematics_ == Kinematics::small_strain) {
+    std::copy(point.law.sigma, point.law.sigma + 9, sigma);
+    return;
+  }
+  const Mat3 R = rotation(Eigen::Map<const Mat3>(point.eps));
+  Eigen::Map<Mat3>{sigma} = R * Eigen::Map<const Mat3>(point.law.sigma) * R.transpose();
+}
+
+void PlasticPoints::first_piola(const Point& point, double* P) const {
+  if (kinematics_ == Kinematics::small_strain) {
+    in_plane(point.law.sigma, P);
+    return;
+  }
+  const Mat3 F = Eigen::Map<const Mat3>(point.eps);
+  Mat3 sigma;
+  cauchy(point, sigma.data());
+  const Mat3 P3 = F.determinant() * sigma * F.inverse().transpose();
+  in_plane(P3.data(), P);
+}
 
 void PlasticPoints::strain(const double* H, double* eps) const {
   const int d = dim_;
@@ -21,30 +82,28 @@ void PlasticPoints::in_plane(const double* t3, double* t) const {
 }
 
 PlasticPoints::Point PlasticPoints::evaluate(std::size_t i, const double* H) const {
-  const Point& n = committed_[i];
   Point out;
-  strain(H, out.eps);
   double deps[9];
-  for (int k = 0; k < 9; ++k) deps[k] = out.eps[k] - n.eps[k];
-  law_.update(n.law, deps, out.law);
+  increment(committed_[i], H, out, deps);
+  law_.update(committed_[i].law, deps, out.law);
   return out;
 }
 
 void PlasticPoints::stress(std::size_t i, const double* H, double* P) {
   Point& t = trial_[i];
   if (mode_ == PlasticMode::lbc && !flagged_[i]) {
-    const Point& n = committed_[i];
-    strain(H, t.eps);
     double deps[9];
-    for (int k = 0; k < 9; ++k) deps[k] = t.eps[k] - n.eps[k];
-    law_.elastic(n.law, deps, t.law);
+    increment(committed_[i], H, t, deps);
+    law_.elastic(committed_[i].law, deps, t.law);
   } else {
     t = evaluate(i, H);
   }
-  in_plane(t.law.sigma, P);
+  first_piola(t, P);
 }
 
 void PlasticPoints::tangent(std::size_t i, const double* H, double* C) const {
+  if (kinematics_ != Kinematics::small_strain)
+    throw std::logic_error("PlasticPoints::tangent: no consistent tangent under finite rotation");
   const Point& n = committed_[i];
   double eps[9], deps[9], D[81];
   strain(H, eps);
@@ -62,10 +121,15 @@ void PlasticPoints::tangent(std::size_t i, const double* H, double* C) const {
 }
 
 double PlasticPoints::stored_energy(std::size_t i) const {
-  const Point& t = trial_[i];
-  double w = 0.0;
-  for (int k = 0; k < 9; ++k) w += 0.5 * t.law.sigma[k] * (t.eps[k] - t.law.eps_p[k]);
-  return w;
+  // 1/2 sigma : C^-1 sigma, the elastic strain taken from the (unrotated) stress.
+  const double* s = trial_[i].law.sigma;
+  const double K = law_.bulk(), G = law_.shear(), p = (s[0] + s[4] + s[8]) / 3.0;
+  double ss = 0.0;
+  for (int k = 0; k < 9; ++k) {
+    const double dev = s[k] - (k % 4 == 0 ? p : 0.0);
+    ss += dev * dev;
+  }
+  return ss / (4.0 * G) + 9.0 * p * p / (2.0 * 9.0 * K);
 }
 
 std::size_t PlasticPoints::flag_violations(double tolerance) {
@@ -88,8 +152,10 @@ std::size_t PlasticPoints::flag_violations(double tolerance) {
 void PlasticPoints::commit() { committed_ = trial_; }
 
 void PlasticPoints::reset() {
-  std::fill(committed_.begin(), committed_.end(), Point{});
-  std::fill(trial_.begin(), trial_.end(), Point{});
+  Point virgin;
+  if (kinematics_ == Kinematics::finite_rotation) virgin.eps[0] = virgin.eps[4] = virgin.eps[8] = 1.0;
+  std::fill(committed_.begin(), committed_.end(), virgin);
+  std::fill(trial_.begin(), trial_.end(), virgin);
   std::fill(flagged_.begin(), flagged_.end(), std::uint8_t{0});
 }
 

@@ -162,6 +162,7 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
       s.model.weight_precision == "single" ? WeightPrecision::float32 : WeightPrecision::float64;
   parse_formulation(s.model.formulation, opt.formulation);
   opt.plasticity = s.plasticity;
+  if (s.model.kinematics == "finite_rotation") opt.kinematics = Kinematics::finite_rotation;
   Surface surface;
   if (opt.formulation != Formulation::classical) {
     // E: within 2 delta of the surface (THEORY sec. 5); the strong form makes E everything.

@@ -149,6 +149,11 @@ void read_model(Fields f, Scene& s) {
   if (s.model.operator_order == 2 && s.model.stabilization > 0.0 && storage != StabilizationStorage::automatic &&
       storage != StabilizationStorage::assembled)
     f.fail("stabilization_storage", "with operator_order 2 the stabilization is stored assembled (use auto or assembled)");
+  s.model.kinematics = f.text("kinematics", "small_strain");
+  if (s.model.kinematics != "small_strain" && s.model.kinematics != "finite_rotation")
+    f.fail("kinematics", "must be small_strain or finite_rotation");
+  if (s.model.kinematics == "finite_rotation" && !s.plasticity)
+    f.fail("kinematics", "finite_rotation is implemented for the drucker_prager material only");
   f.finish();
 }
 
@@ -195,6 +200,9 @@ void read_solver(Fields f, Scene& s) {
   if (!(v.step_tolerance > 0.0)) f.fail("step_tolerance", "must be positive");
   v.check = f.text("check", "none");
   if (v.check != "none" && v.check != "newton") f.fail("check", "must be none or newton");
+  if ((v.type == "newton" || v.check == "newton") && s.model.kinematics == "finite_rotation")
+    f.fail(v.type == "newton" ? "type" : "check",
+           "Newton needs the consistent tangent, which exists for small strain only (model.kinematics)");
   if (v.check == "newton" && v.type != "adr" && v.type != "lbc")
     f.fail("check", "the Newton check compares static answers: it needs solver.type adr or lbc");
   v.yield_tolerance = f.number("yield_tolerance", v.yield_tolerance);

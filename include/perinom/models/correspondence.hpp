@@ -57,6 +57,7 @@ struct CorrespondenceOptions {
   /// A Drucker-Prager law in place of the linear elastic one (its E and nu must be the
   /// material's; the stabilization and the explicit solvers' mass use the elastic moduli).
   std::optional<DruckerPrager> plasticity;
+  Kinematics kinematics = Kinematics::small_strain;  ///< of the plastic law (PlasticPoints)
 };
 
 class CorrespondenceModel : public TangentModel {

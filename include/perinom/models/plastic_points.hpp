@@ -20,16 +20,27 @@ namespace perinom {
 
 enum class PlasticMode { lbc, return_map };
 
+/// small_strain: eps = sym(grad u), the stress is the law's.
+/// finite_rotation (seed 000 sec. 2.1, THEORY sec. 3): F = I + grad u; over a step the
+///   unrotated strain increment is R_m^T sym(L) R_m with L = (F - F_n) F_m^-1 and R_m the
+///   rotation of the midpoint F_m = (F + F_n)/2 (zero for any rigid rotation, since then L is
+///   the Cayley transform of the rotation, which is skew); the law works on the unrotated
+///   stress; the Cauchy stress is R sigma_u R^T with R from the polar decomposition of F, and
+///   the model receives P = J sigma F^-T. No consistent tangent (Newton needs small strain).
+enum class Kinematics { small_strain, finite_rotation };
+
 class PlasticPoints {
  public:
   /// One particle's state: the law's state and the total strain it belongs to.
   struct Point {
-    DruckerPrager::State law;
-    double eps[9] = {};  ///< total strain, tension positive
+    DruckerPrager::State law;  ///< finite rotation: the unrotated stress and plastic strain
+    double eps[9] = {};  ///< small strain: total strain, tension positive; finite rotation: F
   };
 
   PlasticPoints() = default;
-  PlasticPoints(const DruckerPrager& law, int dim, std::size_t particles);
+  PlasticPoints(const DruckerPrager& law, int dim, std::size_t particles,
+                Kinematics kinematics = Kinematics::small_strain);
+  Kinematics kinematics() const { return kinematics_; }
 
   const DruckerPrager& law() const { return law_; }
   std::size_t size() const { return committed_.size(); }
@@ -41,6 +52,8 @@ class PlasticPoints {
   void stress(std::size_t i, const double* H, double* P);
   /// The state particle i would take at H under the return map, without keeping it.
   Point evaluate(std::size_t i, const double* H) const;
+  /// The 3 x 3 Cauchy stress of a state (the law's stress, rotated under finite rotation).
+  void cauchy(const Point& point, double* sigma) const;
   /// The consistent tangent dP/dH (d^4 values) of the return map at H, from the committed
   /// state (the elastic C for an elastic step, as in Newton on a load step).
   void tangent(std::size_t i, const double* H, double* C) const;
@@ -68,9 +81,15 @@ class PlasticPoints {
   void strain(const double* H, double* eps) const;
   /// The d x d block of a 3 x 3 tensor.
   void in_plane(const double* t3, double* t) const;
+  /// The law's increment from committed state n to grad u = H: the total strain (small
+  /// strain) or F (finite rotation) goes to out.eps, the law's strain increment to deps.
+  void increment(const Point& n, const double* H, Point& out, double* deps) const;
+  /// The d x d first Piola-Kirchhoff stress of a state.
+  void first_piola(const Point& point, double* P) const;
 
   DruckerPrager law_;
   int dim_ = 3;
+  Kinematics kinematics_ = Kinematics::small_strain;
   PlasticMode mode_ = PlasticMode::lbc;
   std::vector<Point> committed_, trial_;
   std::vector<std::uint8_t> flagged_;

@@ -31,6 +31,7 @@ struct ModelSpec {
   double stabilization = 0.5;  ///< C_hg (thin_plate: of the operator energy)
   std::string stabilization_storage = "auto";  ///< auto | fused | assembled | matrix_free
   std::string weight_precision = "double";          ///< double | single (G's stored weights)
+  std::string kinematics = "small_strain";  ///< small_strain | finite_rotation (plasticity)
   int operator_order = 1;  ///< 1 | 2: the fit G comes from (CorrespondenceOptions::operator_order)
 };
 
