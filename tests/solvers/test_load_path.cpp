@@ -40,7 +40,7 @@ double spread(const PlasticPoints& pp) {
 // Test 6 of Table 2 (h = 50) stays stable: LBC and Newton both reproduce the material
 // point at every particle. In tests 1-4 and 7 (h = 0) the uniform state becomes unstable late
 // in compression under the improved formulation (the strong-form rows give the tangent an
-// eigenvalue with negative real part; docs/verification/biaxial.md): Newton stays on it and
+// eigenvalue with negative real part; docs/verification/biaxial_table.md): Newton stays on it and
 // is checked here on test 2; ADR-based LBC leaves it, which the verification report shows.
 TEST_CASE("LBC and Newton reproduce the material point on the biaxial test, uniformly", "[load_path]") {
   const int steps = 20;
