@@ -200,9 +200,6 @@ void read_solver(Fields f, Scene& s) {
   if (!(v.step_tolerance > 0.0)) f.fail("step_tolerance", "must be positive");
   v.check = f.text("check", "none");
   if (v.check != "none" && v.check != "newton") f.fail("check", "must be none or newton");
-  if ((v.type == "newton" || v.check == "newton") && s.model.kinematics == "finite_rotation")
-    f.fail(v.type == "newton" ? "type" : "check",
-           "Newton needs the consistent tangent, which exists for small strain only (model.kinematics)");
   if (v.check == "newton" && v.type != "adr" && v.type != "lbc")
     f.fail("check", "the Newton check compares static answers: it needs solver.type adr or lbc");
   v.yield_tolerance = f.number("yield_tolerance", v.yield_tolerance);

@@ -519,15 +519,10 @@ TEST_CASE("thin_plate keys are checked, each by its key", "[cli][plate]") {
   }
 }
 
-TEST_CASE("finite rotation is refused where it does not apply, by key", "[cli]") {
+TEST_CASE("finite rotation is refused without a plastic material, and an unknown kinematics by key", "[cli]") {
   {
     const std::string s = with(tiny_scene, "solver:\n", "model:\n  kinematics: finite_rotation\nsolver:\n");
     require_rejected(s, {at_line(s, "kinematics:", "model.kinematics: finite_rotation is implemented for the drucker_prager material only")});
-  }
-  {
-    std::string s = with(plastic_scene("h", "0.0"), "solver:\n", "model:\n  kinematics: finite_rotation\nsolver:\n");
-    s = with(s, "  type: lbc\n", "  type: newton\n");
-    require_rejected(s, {at_line(s, "type: newton", "solver.type: Newton needs the consistent tangent")});
   }
   {
     const std::string s = with(plastic_scene("h", "0.0"), "solver:\n", "model:\n  kinematics: large\nsolver:\n");

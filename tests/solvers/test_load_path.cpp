@@ -244,3 +244,25 @@ TEST_CASE("finite rotation agrees with small strain at small strains", "[load_pa
   CHECK(diff < 1e-3 * scale);
   CHECK(diff > 0.0);
 }
+
+TEST_CASE("finite rotation: LBC and Newton (finite-difference tangent) agree", "[load_path]") {
+  // Test 6 (h = 50, stable), 5 + 5 steps, with finite rotation: the same backward-Euler steps.
+  std::vector<double> sigma[2];
+  int k = 0;
+  for (const std::string solver : {"lbc", "newton"}) {
+    Problem p = biaxial(5, solver, {"model.kinematics=finite_rotation", "material.h=50"});
+    std::vector<double> u;
+    const SolveReport rep = solve(p, u);
+    REQUIRE(rep.converged);
+    // Newton converges: a few iterations per plastic step, not the iteration limit.
+    if (solver == "newton") CHECK(rep.iterations < 10 * 10);
+    p.model->stress3(u.data(), sigma[k++]);
+  }
+  double diff = 0.0, scale = 0.0;
+  for (std::size_t q = 0; q < sigma[0].size(); ++q) {
+    diff = std::max(diff, std::abs(sigma[0][q] - sigma[1][q]));
+    scale = std::max(scale, std::abs(sigma[1][q]));
+  }
+  INFO("max difference " << diff << " of " << scale);
+  CHECK(diff < 1e-6 * scale);
+}
