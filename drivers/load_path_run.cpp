@@ -7,6 +7,7 @@
 
 #include "perinom/core/timer.hpp"
 #include "perinom/io/csv_writer.hpp"
+#include "difference.hpp"
 #include "snapshot.hpp"
 #include "terminal_progress.hpp"
 
@@ -124,11 +125,7 @@ io::Json load_path_newton_check(Problem& p, const std::vector<double>& u, const 
   p.model->stress3(un.data(), sn);
   if (plastic) *plastic = *saved;
   p.model->stress3(u.data(), s);
-  auto relative = [](const std::vector<double>& a, const std::vector<double>& b) {
-    double d2 = 0, b2 = 0;
-    for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) d2 += (a[k] - b[k]) * (a[k] - b[k]), b2 += b[k] * b[k];
-    return b2 > 0 ? std::sqrt(d2 / b2) : std::sqrt(d2);
-  };
+  const Difference du = difference(u, un), ds = difference(s, sn);
   // Per probe: max over steps |a - b| over max over steps |b|, for value, von Mises and xi.
   double probes_max = 0.0;
   const std::size_t columns = first.rows.empty() ? 0 : first.rows[0].size();
@@ -141,8 +138,10 @@ io::Json load_path_newton_check(Problem& p, const std::vector<double>& u, const 
     if (bmax > 0.0) probes_max = std::max(probes_max, dmax / bmax);
   }
   io::Json j = io::Json::object();
-  j["displacement_relative_l2"] = relative(u, un);
-  j["stress_relative_l2"] = relative(s, sn);
+  j["displacement_relative_l2"] = du.relative_l2;
+  j["displacement_relative_max"] = du.relative_max;
+  j["stress_relative_l2"] = ds.relative_l2;
+  j["stress_relative_max"] = ds.relative_max;
   j["probe_histories_relative_max"] = probes_max;
   j["newton_iterations"] = static_cast<long long>(rep.iterations);
   j["newton_converged"] = rep.converged;
@@ -150,7 +149,7 @@ io::Json load_path_newton_check(Problem& p, const std::vector<double>& u, const 
   if (!rep.failure.empty()) j["newton_error"] = rep.failure;
   std::printf("perinom: Newton check: displacement differs by %.3e, stress by %.3e (relative L2), probe "
               "histories by %.3e (relative max over steps); Newton: %lld iterations, %.3f s\n",
-              relative(u, un), relative(s, sn), probes_max, static_cast<long long>(rep.iterations), seconds);
+              du.relative_l2, ds.relative_l2, probes_max, static_cast<long long>(rep.iterations), seconds);
   return j;
 }
 

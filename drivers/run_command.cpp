@@ -16,6 +16,7 @@
 #include "perinom/core/timer.hpp"
 #include "perinom/solvers/newton.hpp"
 #include "perinom/solvers/verlet.hpp"
+#include "difference.hpp"
 #include "load_path_run.hpp"
 #include "plate_output.hpp"
 #include "snapshot.hpp"
@@ -124,29 +125,19 @@ Json newton_check(Problem& p, const std::vector<double>& u) {
     p.model->stress3(u.data(), s);
     p.model->stress3(un.data(), sn);
   }
-  auto compare = [](const std::vector<double>& a, const std::vector<double>& b, double& rel_l2, double& rel_max) {
-    double d2 = 0, b2 = 0, dmax = 0, bmax = 0;
-    for (std::size_t k = 0; k < a.size(); ++k) {
-      d2 += (a[k] - b[k]) * (a[k] - b[k]), b2 += b[k] * b[k];
-      dmax = std::max(dmax, std::abs(a[k] - b[k])), bmax = std::max(bmax, std::abs(b[k]));
-    }
-    rel_l2 = std::sqrt(d2 / b2), rel_max = dmax / bmax;
-  };
-  double u_l2 = 0, u_max = 0, s_l2 = 0, s_max = 0;
-  compare(u, un, u_l2, u_max);
-  compare(s, sn, s_l2, s_max);
+  const Difference du = difference(u, un), ds = difference(s, sn);
   Json j = Json::object();
-  j["displacement_relative_l2"] = u_l2;
-  j["displacement_relative_max"] = u_max;
-  j["stress_relative_l2"] = s_l2;
-  j["stress_relative_max"] = s_max;
+  j["displacement_relative_l2"] = du.relative_l2;
+  j["displacement_relative_max"] = du.relative_max;
+  j["stress_relative_l2"] = ds.relative_l2;
+  j["stress_relative_max"] = ds.relative_max;
   j["newton_iterations"] = static_cast<long long>(rep.iterations);
   j["newton_converged"] = rep.converged;
   j["newton_residual"] = rep.residual;
   j["newton_seconds"] = seconds;
   if (!rep.failure.empty()) j["newton_error"] = rep.failure;
   std::printf("perinom: Newton check: displacement differs by %.3e, stress by %.3e (relative L2); "
-              "Newton: %lld iterations, %.3f s\n", u_l2, s_l2, static_cast<long long>(rep.iterations), seconds);
+              "Newton: %lld iterations, %.3f s\n", du.relative_l2, ds.relative_l2, static_cast<long long>(rep.iterations), seconds);
   return j;
 }
 

@@ -29,6 +29,16 @@ SolveReport solve(Problem& p, std::vector<double>& u) {
   return solve_load_path(*p.model, p.stages, o, u);
 }
 
+/// max |a - b| and max |b|.
+std::pair<double, double> max_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  double diff = 0.0, scale = 0.0;
+  for (std::size_t q = 0; q < a.size(); ++q) {
+    diff = std::max(diff, std::abs(a[q] - b[q]));
+    scale = std::max(scale, std::abs(b[q]));
+  }
+  return {diff, scale};
+}
+
 double spread(const PlasticPoints& pp) {
   double lo = INFINITY, hi = 0.0;
   for (const auto& point : pp.committed()) lo = std::min(lo, point.law.xi), hi = std::max(hi, point.law.xi);
@@ -235,11 +245,7 @@ TEST_CASE("finite rotation agrees with small strain at small strains", "[load_pa
     REQUIRE(solve(p, u).converged);
     p.model->stress3(u.data(), sigma[k++]);
   }
-  double diff = 0.0, scale = 0.0;
-  for (std::size_t q = 0; q < sigma[0].size(); ++q) {
-    diff = std::max(diff, std::abs(sigma[0][q] - sigma[1][q]));
-    scale = std::max(scale, std::abs(sigma[1][q]));
-  }
+  const auto [diff, scale] = max_difference(sigma[0], sigma[1]);
   INFO("max difference " << diff << " of " << scale);
   CHECK(diff < 1e-3 * scale);
   CHECK(diff > 0.0);
@@ -258,11 +264,7 @@ TEST_CASE("finite rotation: LBC and Newton (finite-difference tangent) agree", "
     if (solver == "newton") CHECK(rep.iterations < 10 * 10);
     p.model->stress3(u.data(), sigma[k++]);
   }
-  double diff = 0.0, scale = 0.0;
-  for (std::size_t q = 0; q < sigma[0].size(); ++q) {
-    diff = std::max(diff, std::abs(sigma[0][q] - sigma[1][q]));
-    scale = std::max(scale, std::abs(sigma[1][q]));
-  }
+  const auto [diff, scale] = max_difference(sigma[0], sigma[1]);
   INFO("max difference " << diff << " of " << scale);
   CHECK(diff < 1e-6 * scale);
 }
