@@ -159,10 +159,10 @@ double CorrespondenceModel::energy(const double* u) {
   G_.apply(u, dim_, H_.data());
   // Summed in fixed blocks: the same bits for any thread count.
   if (plastic_) {
-    // The stored elastic energy of the state at u (plastic work is dissipated, not stored).
-    const int dd = dim_ * dim_;
-    std::vector<double> P(dd);
-    for (std::size_t i = 0; i < n; ++i) plastic_->stress(i, H_.data() + i * dd, P.data());
+    // The stored elastic energy of the state at u (plastic work is dissipated, not stored):
+    // evaluate the trial states first (Q_ is scratch here).
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) plastic_->stress(i, H_.data() + i * d2, Q_.data() + i * d2);
   }
   double w = parallel_sums<1>(n, [&](std::size_t i, double* acc) {
     acc[0] += volume_[i] * (plastic_ ? plastic_->stored_energy(i) : material_.energy(H_.data() + i * d2));

@@ -268,3 +268,19 @@ TEST_CASE("finite rotation: LBC and Newton (finite-difference tangent) agree", "
   INFO("max difference " << diff << " of " << scale);
   CHECK(diff < 1e-6 * scale);
 }
+
+TEST_CASE("the plastic state's stored energy is 1/2 sigma : eps in the elastic range", "[load_path]") {
+  // The model's energy() of a plastic material sums it; elastic: no plastic strain.
+  DruckerPrager dp = seed_biaxial_test(2).material;
+  dp.cohesion = 1e9;  // stays elastic
+  PlasticPoints points(dp, 2, 1);
+  const double H[4] = {-2e-3, 4e-4, 1e-4, 1e-3};
+  double P[4];
+  points.stress(0, H, P);
+  LinearElastic e;
+  e.E = dp.E, e.nu = dp.nu, e.dim = 2, e.plane = PlaneCondition::strain;
+  CHECK(points.stored_energy(0) == Approx(e.energy(H)).epsilon(1e-12));
+  double Pe[4];
+  e.stress(H, Pe);
+  for (int k = 0; k < 4; ++k) CHECK(P[k] == Approx(Pe[k]).epsilon(1e-12));
+}
