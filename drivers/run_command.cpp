@@ -1,6 +1,7 @@
 // perinom run: read a scene, build it, solve it, write VTK, CSV and summary.json.
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -141,6 +142,14 @@ Json newton_check(Problem& p, const std::vector<double>& u) {
   return j;
 }
 
+bool has_surface_load(const Scene& scene) {
+  auto any = [](const std::vector<BoundarySpec>& list) {
+    return std::any_of(list.begin(), list.end(), [](const BoundarySpec& b) { return b.traction || b.pressure; });
+  };
+  return any(scene.boundary) || std::any_of(scene.stages.begin(), scene.stages.end(),
+                                            [&](const StageSpec& st) { return any(st.boundary); });
+}
+
 }  // namespace
 
 int run(const Options& opt) {
@@ -155,6 +164,9 @@ int run(const Options& opt) {
   Problem p = build_problem(scene, &timer);
   std::printf("perinom: %s: %zu particles, %zu bonds, %d threads, solver %s\n", scene.name.c_str(),
               p.cloud.size(), p.bonds, omp_get_max_threads(), scene.solver.type.c_str());
+  if (scene.model.kinematics == "finite_rotation" && has_surface_load(scene))
+    std::printf("perinom: note: model.kinematics finite_rotation: tractions and pressures stay nominal "
+                "(per reference area, reference direction); follower loads are not implemented\n");
   std::fflush(stdout);
 
   io::PvdSeries series(dir, scene.name);

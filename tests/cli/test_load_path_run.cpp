@@ -61,5 +61,21 @@ TEST_CASE("a plastic scene writes its step table, probe histories and plastic fi
   CHECK(lines(out / "biaxial_compression_000001.csv") == 1 + 400);
   // The step table on stdout names the columns.
   CHECK(slurp(d / "out.txt").find("rounds  flagged yielding") != std::string::npos);
+  CHECK(slurp(d / "out.txt").find("follower") == std::string::npos);
+  fs::remove_all(d);
+}
+
+TEST_CASE("finite rotation with pressures says the loads stay nominal", "[cli][load_path]") {
+  const fs::path d = fs::temp_directory_path() / "perinom_load_path_nominal";
+  fs::remove_all(d);
+  fs::create_directories(d);
+  const std::string cmd = "cd '" + d.string() + "' && '" PERINOM_EXE "' run '" PERINOM_SOURCE_DIR
+                          "/examples/biaxial_compression.yaml' --out out --set stages.0.steps=1 --set "
+                          "stages.1.steps=1 --set model.kinematics=finite_rotation >out.txt 2>err.txt";
+  const int status = std::system(cmd.c_str());
+  REQUIRE(WIFEXITED(status));
+  INFO(slurp(d / "err.txt"));
+  REQUIRE(WEXITSTATUS(status) == 0);
+  CHECK(slurp(d / "out.txt").find("tractions and pressures stay nominal") != std::string::npos);
   fs::remove_all(d);
 }
