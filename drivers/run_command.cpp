@@ -165,8 +165,10 @@ int run(const Options& opt) {
   std::printf("perinom: %s: %zu particles, %zu bonds, %d threads, solver %s\n", scene.name.c_str(),
               p.cloud.size(), p.bonds, omp_get_max_threads(), scene.solver.type.c_str());
   if (scene.model.kinematics == "finite_rotation" && has_surface_load(scene))
-    std::printf("perinom: note: model.kinematics finite_rotation: tractions and pressures stay nominal "
-                "(per reference area, reference direction); follower loads are not implemented\n");
+    std::printf("perinom: note: model.kinematics finite_rotation: %s\n",
+                scene.model.follower_pressure
+                    ? "pressures follow the deformed surface; traction vectors stay dead loads (reference area)"
+                    : "tractions and pressures stay nominal (model.follower_pressure: false)");
   std::fflush(stdout);
 
   io::PvdSeries series(dir, scene.name);

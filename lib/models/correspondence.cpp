@@ -48,6 +48,11 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
       throw InputError("material.plane: Drucker-Prager plasticity needs plane strain in 2-D");
     plastic_.emplace(*options.plasticity, dim_, volume_.size(), options.kinematics);
   }
+  if (options.follower_pressure) {
+    if (!options.plasticity || options.kinematics != Kinematics::finite_rotation)
+      throw std::invalid_argument("CorrespondenceModel: follower pressures need finite_rotation kinematics");
+    follower_.emplace(dim_);
+  }
   if (order_ != 1 && order_ != 2)
     throw std::invalid_argument("CorrespondenceModel: operator_order must be 1 or 2");
   const BondWeights weights = bond_weights(cloud, families, options.influence);
@@ -151,6 +156,11 @@ void CorrespondenceModel::internal_force(const double* u, double* f) {
     parallel_for(lap_.size(), [f, lap](std::size_t k) { f[k] -= lap[k]; });
   }
   if (S_assembled_) S_assembled_->apply_add(u, dim_, f);
+  if (follower_ && follower_->active()) follower_->add_force(H_.data(), f);
+}
+
+void CorrespondenceModel::follow_loads(const Loading& loading, double s) {
+  if (follower_) follower_->follow(loading, s);
 }
 
 double CorrespondenceModel::energy(const double* u) {
@@ -199,28 +209,33 @@ std::vector<double> CorrespondenceModel::lumped_mass() const {
 void CorrespondenceModel::visit_rows(
     const PointwiseTangent& C,
     const std::function<void(std::size_t, const std::vector<ParticleId>&,
-                             const std::vector<double>&)>& visit) const {
+                             const std::vector<double>&)>& visit,
+                                     const double* local) const {
   const StrongRows strong{surface_.in_band.data(), surface_.normal_over_h.data()};
   // Order 1 adds S0's rows from S; order 2 has only the stored S0.
   const ScalarCsr* S0 = !S_ && S_assembled_ ? &*S_assembled_ : nullptr;
   for_each_tangent_row(G_, C, stabilization(), visit,
-                       formulation_ == Formulation::classical ? nullptr : &strong, S0);
+                       formulation_ == Formulation::classical ? nullptr : &strong, S0, local);
 }
 
 void CorrespondenceModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
+  const double* local = follower_ && follower_->active() ? follower_tangent_.data() : nullptr;
   if (!C_.empty()) {
-    visit_rows(PointwiseTangent{C_.data(), std::size_t(dim_ * dim_ * dim_ * dim_), volume_.data()}, visit);
+    visit_rows(PointwiseTangent{C_.data(), std::size_t(dim_ * dim_ * dim_ * dim_), volume_.data()}, visit, local);
     return;
   }
   std::vector<double> C(dim_ * dim_ * dim_ * dim_);
   material_.tangent(C.data());
-  visit_rows(PointwiseTangent{C.data(), 0, volume_.data()}, visit);
+  visit_rows(PointwiseTangent{C.data(), 0, volume_.data()}, visit, local);
 }
 
 void CorrespondenceModel::prepare_tangent(const double* u) {
-  if (!plastic_) return;
+  const bool follows = follower_ && follower_->active();
+  if (!plastic_ && !follows) return;
   const int d2 = dim_ * dim_, d4 = d2 * d2;
   G_.apply(u, dim_, H_.data());
+  if (follows) follower_->tangent(H_.data(), follower_tangent_);
+  if (!plastic_) return;
   C_.resize(particles() * d4);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < particles(); ++i) plastic_->tangent(i, H_.data() + i * d2, C_.data() + i * d4);

@@ -51,6 +51,12 @@ void Loading::begin_stage(const Loading* previous, const double* u) {
     force0.resize(n);
     for (std::size_t k = 0; k < n; ++k) force0[k] = previous->force_at(1.0, k);
   }
+  pressure_force0.clear();
+  if (previous && previous->has_pressure()) {
+    const std::size_t n = std::max(previous->pressure_force.size(), previous->pressure_force0.size());
+    pressure_force0.resize(n);
+    for (std::size_t k = 0; k < n; ++k) pressure_force0[k] = previous->pressure_force_at(1.0, k);
+  }
 }
 
 void Loading::zero_fixed(double* r) const {

@@ -8,7 +8,7 @@ void for_each_tangent_row(
     const GradientOperator& G, const PointwiseTangent& tangent, const Stabilization* S,
     const std::function<void(std::size_t, const std::vector<ParticleId>&,
                              const std::vector<double>&)>& visit,
-    const StrongRows* strong, const ScalarCsr* S0) {
+    const StrongRows* strong, const ScalarCsr* S0, const double* local) {
   const int d = G.dim(), d2 = d * d, d3 = d2 * d;
   const std::size_t n = G.rows();
   const auto& off = G.offsets();
@@ -20,6 +20,20 @@ void for_each_tangent_row(
     RowAccumulator acc(n, d2);
     std::vector<double> T(d3), blocks;
     double coef[3];
+    // Adds sum_e T[a c e] G_e[m][j] for j in {m} + H_m: a dependence on u through grad u
+    // at m.
+    auto add_gradient_columns = [&](std::size_t m, const double* T) {
+      auto add_column = [&](ParticleId j, const double* gmj) {
+        double* K = acc.at(j);
+        for (int ac = 0; ac < d2; ++ac) {
+          double s = 0.0;
+          for (int e = 0; e < d; ++e) s += T[ac * d + e] * gmj[e];
+          K[ac] += s;
+        }
+      };
+      add_column(static_cast<ParticleId>(m), G.diagonal(m));
+      for (Offset k = off[m]; k < off[m + 1]; ++k) add_column(cols[k], G.weight(k).data());
+    };
     // Adds sum_b coef[b] C_m[a b c e] G_e[m][j] for j in {m} + H_m: the row's dependence
     // on u through the stress P_m, weighted by coef (a d-vector, volume included).
     auto add_source = [&](std::size_t m, const double* coef) {
@@ -31,16 +45,7 @@ void for_each_tangent_row(
             for (int b = 0; b < d; ++b) s += coef[b] * C[((a * d + b) * d + c) * d + e];
             T[(a * d + c) * d + e] = s;
           }
-      auto add_column = [&](ParticleId j, const double* gmj) {
-        double* K = acc.at(j);
-        for (int ac = 0; ac < d2; ++ac) {
-          double s = 0.0;
-          for (int e = 0; e < d; ++e) s += T[ac * d + e] * gmj[e];
-          K[ac] += s;
-        }
-      };
-      add_column(static_cast<ParticleId>(m), G.diagonal(m));
-      for (Offset k = off[m]; k < off[m + 1]; ++k) add_column(cols[k], G.weight(k).data());
+      add_gradient_columns(m, T.data());
     };
 #pragma omp for schedule(dynamic, 64)
     for (std::size_t i = 0; i < n; ++i) {
@@ -62,6 +67,7 @@ void for_each_tangent_row(
           add_source(m, coef);
         }
       }
+      if (local) add_gradient_columns(i, local + i * d3);
       if (S) S->add_row(i, acc, d);
       if (S0)
         for (Offset k = S0->offsets[i]; k < S0->offsets[i + 1]; ++k) {

@@ -43,6 +43,10 @@ Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary,
     const double h = cloud.spacing[b.region.side.axis];
     for (const auto i : ids)
       for (int a = 0; a < d; ++a) load.force[i * d + a] += t[a] * cloud.volume[i] / h;
+    if (!b.pressure) continue;
+    if (load.pressure_force.empty()) load.pressure_force.assign(cloud.size() * d, 0.0);
+    for (const auto i : ids)
+      for (int a = 0; a < d; ++a) load.pressure_force[i * d + a] -= *b.pressure * n[a] * cloud.volume[i] / h;
   }
   return load;
 }
@@ -163,6 +167,7 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
   parse_formulation(s.model.formulation, opt.formulation);
   opt.plasticity = s.plasticity;
   if (s.model.kinematics == "finite_rotation") opt.kinematics = Kinematics::finite_rotation;
+  opt.follower_pressure = s.model.follower_pressure;
   Surface surface;
   if (opt.formulation != Formulation::classical) {
     // E: within 2 delta of the surface (THEORY sec. 5); the strong form makes E everything.

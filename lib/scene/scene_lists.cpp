@@ -128,16 +128,9 @@ void read_probes(const std::vector<YAML::Node>& items, const std::string& source
     if ((p.field == "deflection") != s.thin_plate())
       f.fail("field", s.thin_plate() ? "a thin_plate probe measures the deflection (field: deflection)"
                                      : "deflection is the field of a thin_plate (model.type: thin_plate)");
-    if (f.has("reconstruct")) {
-      f.mark("reconstruct");
-      try {
-        p.reconstruct = f.node("reconstruct").as<bool>();
-      } catch (const YAML::Exception&) {
-        f.fail("reconstruct", "must be true or false");
-      }
-      if (p.reconstruct && (p.is_line || p.field != "displacement"))
-        f.fail("reconstruct", "only point probes of the displacement are reconstructed");
-    }
+    p.reconstruct = f.boolean("reconstruct", p.reconstruct);
+    if (p.reconstruct && (p.is_line || p.field != "displacement"))
+      f.fail("reconstruct", "only point probes of the displacement are reconstructed");
     if (p.field == "deflection") {
       if (f.has("component")) f.fail("component", "a deflection probe has no component");
     } else if (p.field == "displacement") {

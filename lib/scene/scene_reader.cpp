@@ -154,6 +154,9 @@ void read_model(Fields f, Scene& s) {
     f.fail("kinematics", "must be small_strain or finite_rotation");
   if (s.model.kinematics == "finite_rotation" && !s.plasticity)
     f.fail("kinematics", "finite_rotation is implemented for the drucker_prager material only");
+  s.model.follower_pressure = f.boolean("follower_pressure", s.model.kinematics == "finite_rotation");
+  if (s.model.follower_pressure && s.model.kinematics != "finite_rotation")
+    f.fail("follower_pressure", "needs kinematics: finite_rotation (small strain reads loads in the reference configuration)");
   f.finish();
 }
 
@@ -188,14 +191,7 @@ void read_solver(Fields f, Scene& s) {
   if (v.ramp_time < 0.0) f.fail("ramp_time", "must be zero or positive");
   v.history_every = f.integer("history_every", v.history_every);
   if (v.history_every < 1) f.fail("history_every", "must be at least 1");
-  if (f.has("line_search")) {
-    f.mark("line_search");
-    try {
-      v.line_search = f.node("line_search").as<bool>();
-    } catch (const YAML::Exception&) {
-      f.fail("line_search", "must be true or false");
-    }
-  }
+  v.line_search = f.boolean("line_search", v.line_search);
   v.step_tolerance = f.number("step_tolerance", v.step_tolerance);
   if (!(v.step_tolerance > 0.0)) f.fail("step_tolerance", "must be positive");
   v.check = f.text("check", "none");
@@ -254,14 +250,7 @@ Scene parse_scene(const std::string& text, const std::string& source,
       if (step < 1) o.fail("vtk_steps", "load steps are counted from 1");
       s.output.vtk_steps.push_back(step);
     }
-    if (o.has("csv")) {
-      o.mark("csv");
-      try {
-        s.output.csv = o.node("csv").as<bool>();
-      } catch (const YAML::Exception&) {
-        o.fail("csv", "must be true or false");
-      }
-    }
+    s.output.csv = o.boolean("csv", s.output.csv);
     o.finish();
   } else {
     top.mark("output");

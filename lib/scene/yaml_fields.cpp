@@ -76,6 +76,16 @@ int Fields::small_integer(const std::string& k, int fallback) {
   return static_cast<int>(v);
 }
 
+bool Fields::boolean(const std::string& k, bool fallback) {
+  const YAML::Node n = get(k, false);
+  if (!n.IsDefined()) return fallback;
+  try {
+    return n.as<bool>();
+  } catch (const YAML::Exception&) {
+    fail(k, "must be true or false");
+  }
+}
+
 std::string Fields::text(const std::string& k) {
   const YAML::Node n = get(k, true);
   if (!n.IsScalar()) fail(k, "must be a string");

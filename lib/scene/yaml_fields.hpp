@@ -23,6 +23,7 @@ class Fields {
   std::int64_t integer(const std::string& key);  // required
   /// A required or defaulted whole number that must fit in an int.
   int small_integer(const std::string& key, int fallback);
+  bool boolean(const std::string& key, bool fallback);
   std::string text(const std::string& key);      // required
   std::string text(const std::string& key, const std::string& fallback);
   /// A list of exactly n numbers.

@@ -26,6 +26,7 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
   const std::size_t n = model_.dofs();
   u.resize(n, 0.0);
   last_good_ = u;
+  model_.follow_loads(loading, s);
   auto& v = v_;
   auto& f = f_;
   auto& f_old = f_old_;

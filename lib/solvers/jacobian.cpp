@@ -85,6 +85,7 @@ void StaticSystem::assemble(const double* u) {
 }
 
 void StaticSystem::residual(const double* u, double s, double* R) {
+  model_.follow_loads(loading_, s);
   model_.internal_force(u, R);
   if (loading_.has_force())
     for (std::size_t k = 0; k < dofs(); ++k) R[k] -= loading_.force_at(s, k);
@@ -99,6 +100,7 @@ void StaticSystem::residual(const double* u, double s, double* R) {
 }
 
 double StaticSystem::load_norm(const double* u, double s) {
+  model_.follow_loads(loading_, s);
   model_.internal_force(u, fint_.data());
   double reactions = 0.0;
   for (const auto dof : loading_.fixed) reactions += fint_[dof] * fint_[dof];

@@ -519,7 +519,7 @@ TEST_CASE("thin_plate keys are checked, each by its key", "[cli][plate]") {
   }
 }
 
-TEST_CASE("finite rotation is refused without a plastic material, and an unknown kinematics by key", "[cli]") {
+TEST_CASE("finite rotation is refused without a plastic material, an unknown kinematics and a misplaced follower pressure by key", "[cli]") {
   {
     const std::string s = with(tiny_scene, "solver:\n", "model:\n  kinematics: finite_rotation\nsolver:\n");
     require_rejected(s, {at_line(s, "kinematics:", "model.kinematics: finite_rotation is implemented for the drucker_prager material only")});
@@ -527,5 +527,14 @@ TEST_CASE("finite rotation is refused without a plastic material, and an unknown
   {
     const std::string s = with(plastic_scene("h", "0.0"), "solver:\n", "model:\n  kinematics: large\nsolver:\n");
     require_rejected(s, {at_line(s, "kinematics:", "model.kinematics: must be small_strain or finite_rotation")});
+  }
+  {
+    const std::string s = with(plastic_scene("h", "0.0"), "solver:\n", "model:\n  follower_pressure: true\nsolver:\n");
+    require_rejected(s, {at_line(s, "follower_pressure:", "model.follower_pressure: needs kinematics: finite_rotation")});
+  }
+  {
+    const std::string s = with(plastic_scene("h", "0.0"), "solver:\n",
+                               "model:\n  kinematics: finite_rotation\n  follower_pressure: sometimes\nsolver:\n");
+    require_rejected(s, {at_line(s, "follower_pressure:", "model.follower_pressure: must be true or false")});
   }
 }

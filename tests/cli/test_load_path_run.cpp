@@ -65,17 +65,22 @@ TEST_CASE("a plastic scene writes its step table, probe histories and plastic fi
   fs::remove_all(d);
 }
 
-TEST_CASE("finite rotation with pressures says the loads stay nominal", "[cli][load_path]") {
-  const fs::path d = fs::temp_directory_path() / "perinom_load_path_nominal";
+TEST_CASE("finite rotation says how its pressures act", "[cli][load_path]") {
+  const fs::path d = fs::temp_directory_path() / "perinom_load_path_follower";
   fs::remove_all(d);
   fs::create_directories(d);
   const std::string cmd = "cd '" + d.string() + "' && '" PERINOM_EXE "' run '" PERINOM_SOURCE_DIR
                           "/examples/biaxial_compression.yaml' --out out --set stages.0.steps=1 --set "
-                          "stages.1.steps=1 --set model.kinematics=finite_rotation >out.txt 2>err.txt";
-  const int status = std::system(cmd.c_str());
-  REQUIRE(WIFEXITED(status));
-  INFO(slurp(d / "err.txt"));
-  REQUIRE(WEXITSTATUS(status) == 0);
-  CHECK(slurp(d / "out.txt").find("tractions and pressures stay nominal") != std::string::npos);
+                          "stages.1.steps=1 --set model.kinematics=finite_rotation";
+  for (const bool follower : {true, false}) {
+    const std::string c = cmd + (follower ? "" : " --set model.follower_pressure=false") + " >out.txt 2>err.txt";
+    const int status = std::system(c.c_str());
+    REQUIRE(WIFEXITED(status));
+    INFO(slurp(d / "err.txt"));
+    REQUIRE(WEXITSTATUS(status) == 0);
+    const std::string out = slurp(d / "out.txt");
+    CHECK((out.find("pressures follow the deformed surface") != std::string::npos) == follower);
+    CHECK((out.find("tractions and pressures stay nominal") != std::string::npos) == !follower);
+  }
   fs::remove_all(d);
 }

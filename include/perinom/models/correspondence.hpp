@@ -3,7 +3,8 @@
 /// classical: the weak form everywhere, f = G^T (V . P(G u)) + S u.
 /// improved:  the weak form in D; in the band E within 2 delta of the surface the strong
 ///            form f_i = -V_i [(div P)_i - P_i m_i] (m_i the surface normal over the layer
-///            thickness, zero inside), plus S u. Tractions remain loads t V / h.
+///            thickness, zero inside), plus S u. Tractions remain loads t V / h (pressures
+///            optionally follow the deformed surface: follower_pressure.hpp).
 /// strong:    the strong form at every particle (E = everything), exact for uniform stress
 ///            on irregular clouds too.
 #include <functional>
@@ -13,6 +14,7 @@
 #include "perinom/geometry/point_cloud.hpp"
 #include "perinom/geometry/surface.hpp"
 #include "perinom/materials/linear_elastic.hpp"
+#include "perinom/models/follower_pressure.hpp"
 #include "perinom/models/tangent_model.hpp"
 #include "perinom/models/plastic_points.hpp"
 #include "perinom/neighbors/families.hpp"
@@ -58,6 +60,8 @@ struct CorrespondenceOptions {
   /// material's; the stabilization and the explicit solvers' mass use the elastic moduli).
   std::optional<DruckerPrager> plasticity;
   Kinematics kinematics = Kinematics::small_strain;  ///< of the plastic law (PlasticPoints)
+  /// Pressures follow the deformed surface (follower_pressure.hpp); finite_rotation only.
+  bool follower_pressure = false;
 };
 
 class CorrespondenceModel : public TangentModel {
@@ -79,6 +83,7 @@ class CorrespondenceModel : public TangentModel {
   std::vector<double> lumped_mass() const override;
   std::vector<double> stiffness_row_sums() const override;
   std::vector<std::pair<std::string, std::size_t>> memory() const override;
+  void follow_loads(const Loading& loading, double s) override;
 
   /// Visits the block rows of the stiffness dF/du (THEORY sec. 3-5): the weak rows
   /// G^T (V . C) G, the strong rows of the band E for the improved and strong formulations,
@@ -132,11 +137,14 @@ class CorrespondenceModel : public TangentModel {
   std::vector<double> lap_;          // fused: the weighted Laplacian of u
   std::optional<PlasticPoints> plastic_;
   std::vector<double> C_;            // plasticity: per-particle tangents (prepare_tangent)
+  std::optional<FollowerPressure> follower_;
+  std::vector<double> follower_tangent_;  // its local rows at the last prepare_tangent
   void build_second_order(const PointCloud& cloud, const Families& families, const BondWeights& weights,
                           const CorrespondenceOptions& options);
   void visit_rows(const PointwiseTangent& C,
                   const std::function<void(std::size_t, const std::vector<ParticleId>&,
-                                           const std::vector<double>&)>& visit) const;
+                                           const std::vector<double>&)>& visit,
+                  const double* local = nullptr) const;
 };
 
 }  // namespace perinom

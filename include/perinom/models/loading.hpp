@@ -28,6 +28,9 @@ struct Loading {
   // Where a load stage starts (begin_stage); empty: from zero.
   std::vector<double> value0;  ///< the constrained values at s = 0 (m)
   std::vector<double> force0;  ///< the external force at s = 0 (N)
+  /// The part of `force` (and of force0) that pressures make, per dof, in the reference
+  /// configuration: a model with follower pressures turns it with the surface (empty: none).
+  std::vector<double> pressure_force, pressure_force0;
 
   /// The external force on dof k at factor s.
   double force_at(double s, std::size_t k) const {
@@ -35,6 +38,12 @@ struct Loading {
     return f0 + s * ((force.empty() ? 0.0 : force[k]) - f0);
   }
   bool has_force() const { return !force.empty() || !force0.empty(); }
+  /// The pressures' share of force_at(s, k).
+  double pressure_force_at(double s, std::size_t k) const {
+    const double f0 = pressure_force0.empty() ? 0.0 : pressure_force0[k];
+    return f0 + s * ((pressure_force.empty() ? 0.0 : pressure_force[k]) - f0);
+  }
+  bool has_pressure() const { return !pressure_force.empty() || !pressure_force0.empty(); }
   /// |external force at s|.
   double force_norm(double s) const;
   /// The prescribed value of constraint k at factor s.

@@ -6,6 +6,8 @@
 
 namespace perinom {
 
+struct Loading;
+
 /// A discrete model with dofs_per_particle() unknowns per particle, stored point-major.
 /// Solvers own the time loop; models only evaluate. Workspaces are allocated once, so
 /// internal_force() never allocates.
@@ -26,6 +28,9 @@ class Model {
   virtual std::vector<double> stiffness_row_sums() const = 0;
   /// Bytes held by the assembled operators, by name (for `perinom check`).
   virtual std::vector<std::pair<std::string, std::size_t>> memory() const = 0;
+  /// Solvers call this before evaluating forces under `loading` at factor s, for loads the
+  /// model itself carries (follower pressures); most models carry none.
+  virtual void follow_loads(const Loading& loading, double s) { (void)loading, (void)s; }
 };
 
 }  // namespace perinom

@@ -35,10 +35,13 @@ struct StrongRows {
 /// visit is called concurrently from several threads with distinct i.
 /// Cost: sum over m in {i} + H'_i of |H_m| d^3 per row. A stored S0 (e.g. the second-order
 /// stabilization's) may be given in place of S; its rows are added the same way.
+/// `local` (N x d^3, or null) adds a term of row i that depends on grad u at i alone:
+/// K_(i a),(j c) += sum_e local_i[(a d + c) d + e] G_e[i][j] for j in {i} + H_i (follower
+/// pressures).
 void for_each_tangent_row(
     const GradientOperator& G, const PointwiseTangent& tangent, const Stabilization* S,
     const std::function<void(std::size_t, const std::vector<ParticleId>&,
                              const std::vector<double>&)>& visit,
-    const StrongRows* strong = nullptr, const ScalarCsr* S0 = nullptr);
+    const StrongRows* strong = nullptr, const ScalarCsr* S0 = nullptr, const double* local = nullptr);
 
 }  // namespace perinom

@@ -32,6 +32,7 @@ struct ModelSpec {
   std::string stabilization_storage = "auto";  ///< auto | fused | assembled | matrix_free
   std::string weight_precision = "double";          ///< double | single (G's stored weights)
   std::string kinematics = "small_strain";  ///< small_strain | finite_rotation (plasticity)
+  bool follower_pressure = false;  ///< pressures follow the deformed surface (finite_rotation; its default)
   int operator_order = 1;  ///< 1 | 2: the fit G comes from (CorrespondenceOptions::operator_order)
 };
 
