@@ -26,20 +26,25 @@ std::size_t lines(const fs::path& p) {
   return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
 }
 
-}  // namespace
-
-TEST_CASE("a plastic scene writes its step table, probe histories and plastic fields", "[cli][load_path]") {
-  const fs::path d = fs::temp_directory_path() / "perinom_load_path_run";
+/// Runs `perinom run` on the biaxial example in a fresh folder `d` with the given --set
+/// overrides (stdout in d/out.txt, stderr in d/err.txt) and requires exit code 0.
+void run_biaxial(const fs::path& d, const std::string& sets) {
   fs::remove_all(d);
   fs::create_directories(d);
   const std::string cmd = "cd '" + d.string() + "' && '" PERINOM_EXE "' run '" PERINOM_SOURCE_DIR
-                          "/examples/biaxial_compression.yaml' --out out --set stages.0.steps=5 --set "
-                          "stages.1.steps=5 --set solver.check=newton --set output.csv=true --set output.vtk_every=5 --set material.h=50"
-                          " >out.txt 2>err.txt";
+                          "/examples/biaxial_compression.yaml' --out out " + sets + " >out.txt 2>err.txt";
   const int status = std::system(cmd.c_str());
   REQUIRE(WIFEXITED(status));
   INFO(slurp(d / "err.txt"));
   REQUIRE(WEXITSTATUS(status) == 0);
+}
+
+}  // namespace
+
+TEST_CASE("a plastic scene writes its step table, probe histories and plastic fields", "[cli][load_path]") {
+  const fs::path d = fs::temp_directory_path() / "perinom_load_path_run";
+  run_biaxial(d, "--set stages.0.steps=5 --set stages.1.steps=5 --set solver.check=newton --set output.csv=true "
+                 "--set output.vtk_every=5 --set material.h=50");
   const fs::path out = d / "out";
   CHECK(lines(out / "load_steps.csv") == 1 + 10);
   CHECK(lines(out / "probe_center_von_mises_history.csv") == 1 + 10);
@@ -67,17 +72,9 @@ TEST_CASE("a plastic scene writes its step table, probe histories and plastic fi
 
 TEST_CASE("finite rotation says how its pressures act", "[cli][load_path]") {
   const fs::path d = fs::temp_directory_path() / "perinom_load_path_follower";
-  fs::remove_all(d);
-  fs::create_directories(d);
-  const std::string cmd = "cd '" + d.string() + "' && '" PERINOM_EXE "' run '" PERINOM_SOURCE_DIR
-                          "/examples/biaxial_compression.yaml' --out out --set stages.0.steps=1 --set "
-                          "stages.1.steps=1 --set model.kinematics=finite_rotation";
   for (const bool follower : {true, false}) {
-    const std::string c = cmd + (follower ? "" : " --set model.follower_pressure=false") + " >out.txt 2>err.txt";
-    const int status = std::system(c.c_str());
-    REQUIRE(WIFEXITED(status));
-    INFO(slurp(d / "err.txt"));
-    REQUIRE(WEXITSTATUS(status) == 0);
+    run_biaxial(d, std::string("--set stages.0.steps=1 --set stages.1.steps=1 --set model.kinematics=finite_rotation") +
+                       (follower ? "" : " --set model.follower_pressure=false"));
     const std::string out = slurp(d / "out.txt");
     CHECK((out.find("pressures follow the deformed surface") != std::string::npos) == follower);
     CHECK((out.find("tractions and pressures stay nominal") != std::string::npos) == !follower);
