@@ -1,10 +1,10 @@
 #include "perinom/models/plastic_points.hpp"
 
-#include <Eigen/Dense>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "polar.hpp"
 
 namespace perinom {
 
@@ -15,18 +15,8 @@ PlasticPoints::PlasticPoints(const DruckerPrager& law, int dim, std::size_t part
       for (auto& p : *points) p.eps[0] = p.eps[4] = p.eps[8] = 1.0;  // F = I
 }
 
-namespace {
-
-using Mat3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
-
-/// The rotation of F's polar decomposition F = R U.
-Mat3 rotation(const Mat3& F) {
-  const Eigen::JacobiSVD<Mat3> svd(F, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Mat3 R = svd.matrixU() * svd.matrixV().transpose();
-  return R;
-}
-
-}  // namespace
+using detail::Mat3;
+using detail::rotation;
 
 void PlasticPoints::increment(const Point& n, const double* H, Point& out, double* deps) const {
   strain(H, out.eps);
@@ -102,7 +92,7 @@ void PlasticPoints::stress(std::size_t i, const double* H, double* P) {
 }
 
 void PlasticPoints::tangent(std::size_t i, const double* H, double* C) const {
-  if (kinematics_ == Kinematics::finite_rotation) return tangent_by_differences(i, H, C);
+  if (kinematics_ == Kinematics::finite_rotation) return tangent_finite_rotation(i, H, C);
   const Point& n = committed_[i];
   double eps[9], deps[9], D[81];
   strain(H, eps);
@@ -117,26 +107,6 @@ void PlasticPoints::tangent(std::size_t i, const double* H, double* C) const {
         for (int e = 0; e < d; ++e)
           C[((a * d + b) * d + c) * d + e] =
               0.5 * (D[((a * 3 + b) * 3 + c) * 3 + e] + D[((a * 3 + b) * 3 + e) * 3 + c]);
-}
-
-void PlasticPoints::tangent_by_differences(std::size_t i, const double* H, double* C) const {
-  // Central differences of P(H) (return map from the committed state), one column per
-  // component of H. The step is relative to the size of the increment so that rounding
-  // (1e-16 / step) and truncation (step^2) balance near 1e-8 relative.
-  const int d = dim_, d2 = d * d;
-  double h = 0.0;
-  for (int k = 0; k < d2; ++k) h = std::max(h, std::abs(H[k]));
-  const double step = 1e-6 * std::max(h, 1e-3);
-  double Hp[9], Hm[9], Pp[9], Pm[9];
-  for (int ce = 0; ce < d2; ++ce) {
-    std::copy(H, H + d2, Hp);
-    std::copy(H, H + d2, Hm);
-    Hp[ce] += step;
-    Hm[ce] -= step;
-    first_piola(evaluate(i, Hp), Pp);
-    first_piola(evaluate(i, Hm), Pm);
-    for (int ab = 0; ab < d2; ++ab) C[ab * d2 + ce] = (Pp[ab] - Pm[ab]) / (2.0 * step);
-  }
 }
 
 double PlasticPoints::stored_energy(std::size_t i) const {

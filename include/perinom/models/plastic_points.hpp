@@ -26,8 +26,8 @@ enum class PlasticMode { lbc, return_map };
 ///   rotation of the midpoint F_m = (F + F_n)/2 (zero for any rigid rotation, since then L is
 ///   the Cayley transform of the rotation, which is skew); the law works on the unrotated
 ///   stress; the Cauchy stress is R sigma_u R^T with R from the polar decomposition of F, and
-///   the model receives P = J sigma F^-T. Its tangent for Newton is taken by central
-///   differences of P per particle, not in closed form.
+///   the model receives P = J sigma F^-T. Its tangent for Newton is the closed-form chain
+///   rule through all of these (the polar rotations' derivatives included).
 enum class Kinematics { small_strain, finite_rotation };
 
 class PlasticPoints {
@@ -56,8 +56,8 @@ class PlasticPoints {
   /// The 3 x 3 Cauchy stress of a state (the law's stress, rotated under finite rotation).
   void cauchy(const Point& point, double* sigma) const;
   /// The consistent tangent dP/dH (d^4 values) of the return map at H, from the committed
-  /// state (the elastic C for an elastic step, as in Newton on a load step). Under finite
-  /// rotation it is taken by central differences of P (2 d^2 return maps per particle).
+  /// state (the elastic C for an elastic step, as in Newton on a load step), finite
+  /// rotation included.
   void tangent(std::size_t i, const double* H, double* C) const;
   /// psi = 1/2 sigma : (eps - eps_p) of the kept trial state (J/m^3).
   double stored_energy(std::size_t i) const;
@@ -86,8 +86,8 @@ class PlasticPoints {
   /// The law's increment from committed state n to grad u = H: the total strain (small
   /// strain) or F (finite rotation) goes to out.eps, the law's strain increment to deps.
   void increment(const Point& n, const double* H, Point& out, double* deps) const;
-  /// Finite rotation: dP/dH by central differences of the return map.
-  void tangent_by_differences(std::size_t i, const double* H, double* C) const;
+  /// Finite rotation: dP/dH in closed form (finite_rotation_tangent.cpp).
+  void tangent_finite_rotation(std::size_t i, const double* H, double* C) const;
   /// The d x d first Piola-Kirchhoff stress of a state.
   void first_piola(const Point& point, double* P) const;
 
