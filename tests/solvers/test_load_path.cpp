@@ -39,6 +39,46 @@ std::pair<double, double> max_difference(const std::vector<double>& a, const std
   return {diff, scale};
 }
 
+/// K du from the model's assembled rows (as prepared by the last prepare_tangent).
+std::vector<double> tangent_product(const CorrespondenceModel& m, const std::vector<double>& du) {
+  const int d = m.dofs_per_particle();
+  std::vector<double> Kdu(du.size(), 0.0);
+  m.visit_tangent_rows([&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
+    for (std::size_t q = 0; q < cols.size(); ++q)
+      for (int a = 0; a < d; ++a)
+        for (int b = 0; b < d; ++b) Kdu[i * d + a] += blocks[(q * d + a) * d + b] * du[cols[q] * d + b];
+  });
+  return Kdu;
+}
+
+/// A smooth direction of size 1e-6 m.
+std::vector<double> probe_direction(std::size_t n) {
+  std::vector<double> du(n);
+  for (std::size_t k = 0; k < n; ++k) du[k] = 1e-6 * std::sin(1.3 * k + 0.2);
+  return du;
+}
+
+/// The rows prepared at u against central differences of the force along du (step
+/// 1e-3 du): {max |K du - FD|, max |FD|}. Kdu receives K du.
+std::pair<double, double> tangent_error(CorrespondenceModel& m, const std::vector<double>& u,
+                                        const std::vector<double>& du, std::vector<double>& Kdu) {
+  m.prepare_tangent(u.data());
+  Kdu = tangent_product(m, du);
+  const std::size_t n = u.size();
+  std::vector<double> up(n), um(n), fp(n), fm(n);
+  const double h = 1e-3;
+  for (std::size_t k = 0; k < n; ++k) up[k] = u[k] + h * du[k], um[k] = u[k] - h * du[k];
+  m.internal_force(up.data(), fp.data());
+  m.internal_force(um.data(), fm.data());
+  double err = 0.0, ref = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double fd = (fp[k] - fm[k]) / (2.0 * h);
+    err = std::max(err, std::abs(fd - Kdu[k]));
+    ref = std::max(ref, std::abs(fd));
+  }
+  return {err, ref};
+}
+
 double spread(const PlasticPoints& pp) {
   double lo = INFINITY, hi = 0.0;
   for (const auto& point : pp.committed()) lo = std::min(lo, point.law.xi), hi = std::max(hi, point.law.xi);
@@ -111,29 +151,10 @@ TEST_CASE("the plastic model's tangent is the derivative of its force, for eithe
     REQUIRE(solve(p, u).converged);
     CorrespondenceModel& m = *p.model;
     m.plastic()->set_mode(PlasticMode::return_map);
-    const std::size_t n = m.dofs();
-    std::vector<double> du(n), up(n), um(n), fp(n), fm(n), Kdu(n, 0.0);
-    for (std::size_t k = 0; k < n; ++k) du[k] = 1e-6 * std::sin(1.3 * k + 0.2);
     // Evaluate at u + a small plastic increment, so the return map is active and smooth.
-    std::vector<double> u1(u);
-    for (std::size_t k = 0; k < n; ++k) u1[k] = 1.001 * u[k];
-    m.prepare_tangent(u1.data());
-    const int d = m.dofs_per_particle();
-    m.visit_tangent_rows([&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
-      for (std::size_t q = 0; q < cols.size(); ++q)
-        for (int a = 0; a < d; ++a)
-          for (int b = 0; b < d; ++b) Kdu[i * d + a] += blocks[(q * d + a) * d + b] * du[cols[q] * d + b];
-    });
-    const double h = 1e-3;
-    for (std::size_t k = 0; k < n; ++k) up[k] = u1[k] + h * du[k], um[k] = u1[k] - h * du[k];
-    m.internal_force(up.data(), fp.data());
-    m.internal_force(um.data(), fm.data());
-    double err = 0.0, ref = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double fd = (fp[k] - fm[k]) / (2.0 * h);
-      err = std::max(err, std::abs(fd - Kdu[k]));
-      ref = std::max(ref, std::abs(fd));
-    }
+    for (auto& v : u) v *= 1.001;
+    std::vector<double> Kdu;
+    const auto [err, ref] = tangent_error(m, u, probe_direction(u.size()), Kdu);
     INFO("max |K du - FD| = " << err << " of " << ref);
     CHECK(err < 1e-6 * ref);
     CHECK(ref > 0.0);
@@ -243,31 +264,13 @@ TEST_CASE("finite rotation: the closed-form tangent is the derivative of the for
   CorrespondenceModel& m = *p.model;
   m.plastic()->set_mode(PlasticMode::return_map);
   const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
-  const std::size_t n = m.dofs();
-  std::vector<double> u1(n), du(n), up(n), um(n), fp(n), fm(n), Kdu(n, 0.0);
+  std::vector<double> u1(u.size()), Kdu;
   for (std::size_t i = 0; i < p.cloud.size(); ++i) {
     const double x = p.cloud.x[2 * i] + 1.001 * u[2 * i], y = p.cloud.x[2 * i + 1] + 1.001 * u[2 * i + 1];
     u1[2 * i] = c * x - s * y - p.cloud.x[2 * i];
     u1[2 * i + 1] = s * x + c * y - p.cloud.x[2 * i + 1];
   }
-  for (std::size_t k = 0; k < n; ++k) du[k] = 1e-6 * std::sin(1.3 * k + 0.2);
-  m.prepare_tangent(u1.data());
-  const int d = m.dofs_per_particle();
-  m.visit_tangent_rows([&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
-    for (std::size_t q = 0; q < cols.size(); ++q)
-      for (int a = 0; a < d; ++a)
-        for (int b = 0; b < d; ++b) Kdu[i * d + a] += blocks[(q * d + a) * d + b] * du[cols[q] * d + b];
-  });
-  const double h = 1e-3;
-  for (std::size_t k = 0; k < n; ++k) up[k] = u1[k] + h * du[k], um[k] = u1[k] - h * du[k];
-  m.internal_force(up.data(), fp.data());
-  m.internal_force(um.data(), fm.data());
-  double err = 0.0, ref = 0.0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double fd = (fp[k] - fm[k]) / (2.0 * h);
-    err = std::max(err, std::abs(fd - Kdu[k]));
-    ref = std::max(ref, std::abs(fd));
-  }
+  const auto [err, ref] = tangent_error(m, u1, probe_direction(u.size()), Kdu);
   INFO("max |K du - FD| = " << err << " of " << ref);
   CHECK(err < 1e-6 * ref);
   CHECK(ref > 0.0);
@@ -343,37 +346,17 @@ TEST_CASE("follower pressures: the tangent is the derivative of the force", "[lo
   CorrespondenceModel& m = *p.model;
   m.plastic()->set_mode(PlasticMode::return_map);
   m.follow_loads(p.stages.back().loading, 1.0);
-  const std::size_t n = m.dofs();
-  std::vector<double> du(n), up(n), um(n), fp(n), fm(n), Kdu(n, 0.0), Kdu_nominal(n, 0.0);
-  for (std::size_t k = 0; k < n; ++k) du[k] = 1e-6 * std::sin(1.3 * k + 0.2);
-  const int d = m.dofs_per_particle();
-  auto product = [&](std::vector<double>& out) {
-    m.visit_tangent_rows([&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
-      for (std::size_t q = 0; q < cols.size(); ++q)
-        for (int a = 0; a < d; ++a)
-          for (int b = 0; b < d; ++b) out[i * d + a] += blocks[(q * d + a) * d + b] * du[cols[q] * d + b];
-    });
-  };
   // At u + a small plastic increment, so the return map is active and smooth.
   for (auto& v : u) v *= 1.001;
-  m.prepare_tangent(u.data());
-  product(Kdu);
-  const double h = 1e-3;
-  for (std::size_t k = 0; k < n; ++k) up[k] = u[k] + h * du[k], um[k] = u[k] - h * du[k];
-  m.internal_force(up.data(), fp.data());
-  m.internal_force(um.data(), fm.data());
-  double err = 0.0, ref = 0.0, follower = 0.0;
-  // The follower rows alone: the same product with the pressures switched off.
+  const auto du = probe_direction(u.size());
+  std::vector<double> Kdu;
+  const auto [err, ref] = tangent_error(m, u, du, Kdu);
   Loading none;
   m.follow_loads(none, 0.0);
   m.prepare_tangent(u.data());
-  product(Kdu_nominal);
-  for (std::size_t k = 0; k < n; ++k) {
-    const double fd = (fp[k] - fm[k]) / (2.0 * h);
-    err = std::max(err, std::abs(fd - Kdu[k]));
-    ref = std::max(ref, std::abs(fd));
-    follower = std::max(follower, std::abs(Kdu[k] - Kdu_nominal[k]));
-  }
+  const auto Kdu_nominal = tangent_product(m, du);
+  double follower = 0.0;
+  for (std::size_t k = 0; k < u.size(); ++k) follower = std::max(follower, std::abs(Kdu[k] - Kdu_nominal[k]));
   INFO("max |K du - FD| = " << err << " of " << ref << "; the follower rows' share " << follower);
   CHECK(err < 1e-6 * ref);
   CHECK(follower > 1e3 * err);
