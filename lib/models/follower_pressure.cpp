@@ -33,8 +33,6 @@ void cofactor(const double* F, int d, double* cof) {
 }
 
 void FollowerPressure::follow(const Loading& loading, double s) {
-  if (&loading == loading_ && s == s_) return;
-  loading_ = &loading, s_ = s;
   particles_.clear();
   if (!loading.has_pressure()) return;
   const std::size_t dofs = std::max(loading.pressure_force.size(), loading.pressure_force0.size());

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "perinom/materials/material_point.hpp"
@@ -274,6 +276,60 @@ TEST_CASE("finite rotation: the closed-form tangent is the derivative of the for
   INFO("max |K du - FD| = " << err << " of " << ref);
   CHECK(err < 1e-6 * ref);
   CHECK(ref > 0.0);
+}
+
+TEST_CASE("finite rotation in 3-D: the closed-form tangent is the derivative of the force", "[load_path]") {
+  // A plastic cube (216 particles) squeezed in three steps, then turned by 30 degrees about
+  // an oblique axis with a little more plastic strain: the 3-D polar derivatives.
+  const std::string path = (std::filesystem::temp_directory_path() / "perinom_plastic_cube.yaml").string();
+  std::ofstream(path) << R"(name: plastic_cube
+dimension: 3
+geometry:
+  box: {min: [0.0, 0.0, 0.0], max: [0.02, 0.02, 0.02]}
+discretization:
+  dx: 0.004
+  horizon: {ratio: 2.015}
+material: {type: drucker_prager, E: 30.0e6, nu: 0.25, density: 2000.0, friction_angle: 35.0,
+           cohesion: 60.0e3, m0: 0.2, d0: 0.0, h: 50.0}
+model: {type: correspondence, formulation: improved, kinematics: finite_rotation}
+boundary:
+  - {region: left, fix: [x], at: face}
+  - {region: front, fix: [y], at: face}
+  - {region: bottom, fix: [z], at: face}
+stages:
+  - name: squeeze
+    steps: 3
+    boundary:
+      - {region: right, pressure: 300.0e3}
+      - {region: top, displacement: {z: -0.0005}, at: face}
+solver: {type: lbc}
+)";
+  Problem p = build_problem(read_scene(path));
+  std::vector<double> u;
+  REQUIRE(solve(p, u).converged);
+  CorrespondenceModel& m = *p.model;
+  double xi = 0.0;
+  for (const auto& point : m.plastic()->committed()) xi = std::max(xi, point.law.xi);
+  REQUIRE(xi > 0.0);
+  m.plastic()->set_mode(PlasticMode::return_map);
+  // R: 30 degrees about (1, 1, 1) / sqrt(3) (Rodrigues).
+  const double t = M_PI / 6, c = std::cos(t), s = std::sin(t), k = 1.0 / std::sqrt(3.0);
+  double R[3][3];
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) R[a][b] = (a == b ? c : 0.0) + (1.0 - c) * k * k;
+  R[0][1] -= s * k, R[1][0] += s * k, R[0][2] += s * k, R[2][0] -= s * k, R[1][2] -= s * k, R[2][1] += s * k;
+  std::vector<double> u1(u.size()), Kdu;
+  for (std::size_t i = 0; i < p.cloud.size(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      double y = 0.0;
+      for (int b = 0; b < 3; ++b) y += R[a][b] * (p.cloud.x[3 * i + b] + 1.001 * u[3 * i + b]);
+      u1[3 * i + a] = y - p.cloud.x[3 * i + a];
+    }
+  const auto [err, ref] = tangent_error(m, u1, probe_direction(u.size()), Kdu);
+  INFO("max |K du - FD| = " << err << " of " << ref);
+  CHECK(err < 1e-6 * ref);
+  CHECK(ref > 0.0);
+  std::filesystem::remove(path);
 }
 
 TEST_CASE("finite rotation agrees with small strain at small strains", "[load_path]") {

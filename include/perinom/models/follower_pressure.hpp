@@ -6,7 +6,6 @@
 /// (cof(F_i) - I) f0_i on its own side of the balance, so the solvers' external force stays
 /// the reference one. Tractions given as vectors stay dead loads.
 #include <cstddef>
-#include <limits>
 #include <vector>
 
 #include "perinom/models/loading.hpp"
@@ -19,8 +18,8 @@ void cofactor(const double* F, int d, double* cof);
 class FollowerPressure {
  public:
   explicit FollowerPressure(int dim) : dim_(dim) {}
-  /// Takes the pressures' reference forces of `loading` at factor s (copied only when the
-  /// loading or s changes).
+  /// Takes the pressures' reference forces of `loading` at factor s (O(N d), far below one
+  /// force evaluation; not cached, so a loading changed in place is always seen).
   void follow(const Loading& loading, double s);
   bool active() const { return !particles_.empty(); }
   /// f_i -= (cof(I + H_i) - I) f0_i at the pressured particles (H: N x d x d, grad u).
@@ -33,8 +32,6 @@ class FollowerPressure {
   int dim_;
   std::vector<double> f0_;               // N x d, the reference pressure force at s
   std::vector<std::size_t> particles_;   // the particles it acts on
-  const Loading* loading_ = nullptr;
-  double s_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace perinom
