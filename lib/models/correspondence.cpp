@@ -210,7 +210,7 @@ void CorrespondenceModel::visit_rows(
     const PointwiseTangent& C,
     const std::function<void(std::size_t, const std::vector<ParticleId>&,
                              const std::vector<double>&)>& visit,
-                                     const double* local) const {
+    const double* local) const {
   const StrongRows strong{surface_.in_band.data(), surface_.normal_over_h.data()};
   // Order 1 adds S0's rows from S; order 2 has only the stored S0.
   const ScalarCsr* S0 = !S_ && S_assembled_ ? &*S_assembled_ : nullptr;

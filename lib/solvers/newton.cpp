@@ -91,8 +91,8 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
   LinearSolver ls(SUNLinSol_KLU(y.get(), J.get(), ctx.get()));
   if (!J || !ls) throw SolveError("Newton: out of memory for the Jacobian (" + std::to_string(A.col.size()) + " nonzeros)");
   // AMD (on A + A^T) rather than SUNDIALS' default COLAMD: the Jacobian's pattern is
-  // (nearly) symmetric, and AMD fills less (plate with a hole, 4,968 dofs: L + U 4.6 M entries against
-  // 5.5 M) and factorizes 15-18% faster (plate with a hole, biaxial test 3).
+  // symmetric, and AMD fills less (plate with a hole, 4,968 dofs: L + U 4.6 M entries
+  // against 5.5 M) and factorizes 15-18% faster (plate with a hole, biaxial test 3).
   check(SUNLinSol_KLUSetOrdering(ls.get(), 0), "SUNLinSol_KLUSetOrdering");
   Kinsol kin(KINCreate(ctx.get()));
   Data data{&system, 0.0};

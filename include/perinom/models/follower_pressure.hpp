@@ -4,7 +4,8 @@
 /// (Loading::pressure_force, -p N V / h) and cof(F) f0 on the deformed body (Nanson's
 /// formula: n da = J F^-T N dA0, with cof(F) = J F^-T). The model carries the difference
 /// (cof(F_i) - I) f0_i on its own side of the balance, so the solvers' external force stays
-/// the reference one. Tractions given as vectors stay dead loads.
+/// the reference one. Tractions given as vectors stay dead loads. The term has no stored
+/// energy: the model's energy() leaves it out.
 #include <cstddef>
 #include <vector>
 
