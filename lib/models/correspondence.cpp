@@ -219,7 +219,11 @@ void CorrespondenceModel::visit_rows(
 }
 
 void CorrespondenceModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
-  const double* local = follower_ && follower_->active() ? follower_tangent_.data() : nullptr;
+  // The follower rows as the last prepare_tangent left them; none before the first (the
+  // symbolic pattern needs none: they only touch columns G's row already has).
+  const std::size_t d3 = static_cast<std::size_t>(dim_) * dim_ * dim_;
+  const bool follows = follower_ && follower_->active() && follower_tangent_.size() == particles() * d3;
+  const double* local = follows ? follower_tangent_.data() : nullptr;
   if (!C_.empty()) {
     visit_rows(PointwiseTangent{C_.data(), std::size_t(dim_ * dim_ * dim_ * dim_), volume_.data()}, visit, local);
     return;

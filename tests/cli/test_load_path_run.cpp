@@ -70,14 +70,17 @@ TEST_CASE("a plastic scene writes its step table, probe histories and plastic fi
   fs::remove_all(d);
 }
 
-TEST_CASE("finite rotation says how its pressures act", "[cli][load_path]") {
+TEST_CASE("finite rotation says how its pressures act, and its Newton check follows LBC", "[cli][load_path]") {
+  // The check re-solves with Newton on a model whose follower loads LBC has already set.
   const fs::path d = fs::temp_directory_path() / "perinom_load_path_follower";
   for (const bool follower : {true, false}) {
-    run_biaxial(d, std::string("--set stages.0.steps=1 --set stages.1.steps=1 --set model.kinematics=finite_rotation") +
+    run_biaxial(d, std::string("--set stages.0.steps=2 --set stages.1.steps=2 --set model.kinematics=finite_rotation "
+                               "--set material.h=50 --set solver.check=newton") +
                        (follower ? "" : " --set model.follower_pressure=false"));
     const std::string out = slurp(d / "out.txt");
     CHECK((out.find("pressures follow the deformed surface") != std::string::npos) == follower);
     CHECK((out.find("tractions and pressures stay nominal") != std::string::npos) == !follower);
+    CHECK(slurp(d / "out" / "summary.json").find("\"newton_converged\": true") != std::string::npos);
   }
   fs::remove_all(d);
 }
