@@ -41,6 +41,27 @@ std::pair<double, double> max_difference(const std::vector<double>& a, const std
   return {diff, scale};
 }
 
+/// The example after five LBC steps with `more` overrides (every particle plastic), the
+/// model evaluating by the return map from then on (as Newton does); u the state reached.
+Problem plastic_state(std::vector<double>& u, const std::vector<std::string>& more) {
+  Problem p = biaxial(5, "lbc", more);
+  REQUIRE(solve(p, u).converged);
+  p.model->plastic()->set_mode(PlasticMode::return_map);
+  return p;
+}
+
+/// u' = R (x + scale u) - x: a 2-D state turned rigidly by `angle` about the origin.
+std::vector<double> turned(const PointCloud& cloud, const std::vector<double>& u, double angle, double scale = 1.0) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  std::vector<double> out(u.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const double x = cloud.x[2 * i] + scale * u[2 * i], y = cloud.x[2 * i + 1] + scale * u[2 * i + 1];
+    out[2 * i] = c * x - s * y - cloud.x[2 * i];
+    out[2 * i + 1] = s * x + c * y - cloud.x[2 * i + 1];
+  }
+  return out;
+}
+
 /// K du from the model's assembled rows (as prepared by the last prepare_tangent).
 std::vector<double> tangent_product(const CorrespondenceModel& m, const std::vector<double>& du) {
   const int d = m.dofs_per_particle();
@@ -148,11 +169,9 @@ TEST_CASE("the plastic model's tangent is the derivative of its force, for eithe
   for (const int order : {1, 2}) {
     INFO("model.operator_order " << order);
     // A plastic state from five LBC steps (all particles yielded), then a random direction.
-    Problem p = biaxial(5, "lbc", {"model.operator_order=" + std::to_string(order)});
     std::vector<double> u;
-    REQUIRE(solve(p, u).converged);
+    Problem p = plastic_state(u, {"model.operator_order=" + std::to_string(order)});
     CorrespondenceModel& m = *p.model;
-    m.plastic()->set_mode(PlasticMode::return_map);
     // Evaluate at u + a small plastic increment, so the return map is active and smooth.
     for (auto& v : u) v *= 1.001;
     std::vector<double> Kdu;
@@ -228,14 +247,9 @@ TEST_CASE("finite rotation: a rigid rotation of a plastic state rotates its stre
     std::vector<double> u;
     REQUIRE(solve(p, u).converged);
     REQUIRE(p.model->plastic()->committed()[0].law.xi > 0.0);
-    std::vector<double> before, after, ur(u.size());
+    std::vector<double> before, after;
     p.model->stress3(u.data(), before);
-    for (std::size_t i = 0; i < p.cloud.size(); ++i) {
-      const double x = p.cloud.x[2 * i] + u[2 * i], y = p.cloud.x[2 * i + 1] + u[2 * i + 1];
-      ur[2 * i] = c * x - s * y - p.cloud.x[2 * i];
-      ur[2 * i + 1] = s * x + c * y - p.cloud.x[2 * i + 1];
-    }
-    p.model->stress3(ur.data(), after);
+    p.model->stress3(turned(p.cloud, u, M_PI / 6).data(), after);
     const double R[3][3] = {{c, -s, 0}, {s, c, 0}, {0, 0, 1}};
     for (std::size_t i = 0; i < p.cloud.size(); ++i) {
       const double* b = before.data() + 9 * i;
@@ -260,19 +274,9 @@ TEST_CASE("finite rotation: the closed-form tangent is the derivative of the for
   // Five LBC steps into the plastic range, then the state with a little more plastic strain
   // turned rigidly by 30 degrees from the committed one: u1 = R (x + 1.001 u) - x. The
   // assembled rows (polar rotations' derivatives included) against central differences.
-  Problem p = biaxial(5, "lbc", {"model.kinematics=finite_rotation", "material.h=50"});
-  std::vector<double> u;
-  REQUIRE(solve(p, u).converged);
-  CorrespondenceModel& m = *p.model;
-  m.plastic()->set_mode(PlasticMode::return_map);
-  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
-  std::vector<double> u1(u.size()), Kdu;
-  for (std::size_t i = 0; i < p.cloud.size(); ++i) {
-    const double x = p.cloud.x[2 * i] + 1.001 * u[2 * i], y = p.cloud.x[2 * i + 1] + 1.001 * u[2 * i + 1];
-    u1[2 * i] = c * x - s * y - p.cloud.x[2 * i];
-    u1[2 * i + 1] = s * x + c * y - p.cloud.x[2 * i + 1];
-  }
-  const auto [err, ref] = tangent_error(m, u1, probe_direction(u.size()), Kdu);
+  std::vector<double> u, Kdu;
+  Problem p = plastic_state(u, {"model.kinematics=finite_rotation", "material.h=50"});
+  const auto [err, ref] = tangent_error(*p.model, turned(p.cloud, u, M_PI / 6, 1.001), probe_direction(u.size()), Kdu);
   INFO("max |K du - FD| = " << err << " of " << ref);
   CHECK(err < 1e-6 * ref);
   CHECK(ref > 0.0);
@@ -396,11 +400,9 @@ TEST_CASE("follower pressures: the tangent is the derivative of the force", "[lo
   // against central differences of the force, the pressures taken at the end of the path.
   // The follower rows must carry weight: switched off, the product changes far more than
   // the error.
-  Problem p = biaxial(5, "lbc", {"model.kinematics=finite_rotation", "material.h=50"});
   std::vector<double> u;
-  REQUIRE(solve(p, u).converged);
+  Problem p = plastic_state(u, {"model.kinematics=finite_rotation", "material.h=50"});
   CorrespondenceModel& m = *p.model;
-  m.plastic()->set_mode(PlasticMode::return_map);
   m.follow_loads(p.stages.back().loading, 1.0);
   // At u + a small plastic increment, so the return map is active and smooth.
   for (auto& v : u) v *= 1.001;
