@@ -45,7 +45,13 @@ int check(const Options& opt) {
   if (p.plate) print_plate(p);
   else std::printf("  model           %s, %s formulation, stabilization C_hg = %g\n",
                    scene.model.type.c_str(), scene.model.formulation.c_str(), scene.model.stabilization);
-  if (p.model && p.model->formulation() != Formulation::classical)
+  if (p.model && p.model->formulation() == Formulation::consistent) {
+    const ConsistencyReport& c = p.model->consistency();
+    std::printf("  consistent G~   %zu boundary facets; correction |G~ - G|/|G| = %.3g, %d CG iterations, "
+                "column residual %.2g, facet defect %.2g\n",
+                p.model->trace().facets().size(), c.relative_change, c.iterations, c.residual, c.rhs_defect);
+  }
+  if (p.model && (p.model->formulation() == Formulation::improved || p.model->formulation() == Formulation::strong))
     std::printf("  subregions      E (strong form, within 2 delta of a surface): %zu particles, "
                 "D (weak form): %zu, surface particles: %zu\n",
                 p.model->surface().band.size(), p.model->surface().interior.size(),

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "perinom/core/error.hpp"
+#include "perinom/geometry/boundary_facets.hpp"
 #include "perinom/neighbors/search.hpp"
 
 namespace perinom {
@@ -14,8 +15,25 @@ namespace {
 /// The side whose face carries each face-located constraint (axis -1: on the particle).
 using FaceOf = std::map<std::int64_t, Side>;
 
+/// Adds the nodal forces of a uniform traction t on a side: work-consistent loads at the
+/// side's boundary facets when there is a trace (the consistent formulation), else the
+/// classical body force on the outer layer (force = t * V_i / layer thickness).
+void add_side_traction(const Side& side, const std::vector<ParticleId>& ids, const double* t,
+                       const PointCloud& cloud, const BoundaryTrace* trace, std::vector<double>& force) {
+  const int d = cloud.dim;
+  if (trace && !trace->empty()) {
+    const auto& f = trace->facets();
+    for (std::size_t k = 0; k < f.size(); ++k)
+      if (f.side[k] == 2 * side.axis + (side.at_max ? 1 : 0)) trace->add_traction(k, t, force.data());
+    return;
+  }
+  const double h = cloud.spacing[side.axis];
+  for (const auto i : ids)
+    for (int a = 0; a < d; ++a) force[i * d + a] += t[a] * cloud.volume[i] / h;
+}
+
 Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary,
-                     const PointCloud& cloud, FaceOf& face_of) {
+                     const PointCloud& cloud, FaceOf& face_of, const BoundaryTrace* trace) {
   const int d = s.dim;
   Loading load;
   for (const auto& b : boundary) {
@@ -31,22 +49,17 @@ Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary,
       }
     }
     if (!b.traction && !b.pressure) continue;
-    // Classical treatment: the traction acts as a body force on the outer layer
-    // (force = t * V_i / layer thickness).
-    std::array<double, 3> t{0, 0, 0};
+    std::array<double, 3> t{0, 0, 0}, tp{0, 0, 0};
     const auto n = outward_normal(b.region.side);
     for (int a = 0; a < d; ++a) {
       if (b.traction) t[a] += (*b.traction)[a];
-      if (b.pressure) t[a] -= *b.pressure * n[a];
+      if (b.pressure) t[a] -= *b.pressure * n[a], tp[a] = -*b.pressure * n[a];
     }
     if (load.force.empty()) load.force.assign(cloud.size() * d, 0.0);
-    const double h = cloud.spacing[b.region.side.axis];
-    for (const auto i : ids)
-      for (int a = 0; a < d; ++a) load.force[i * d + a] += t[a] * cloud.volume[i] / h;
+    add_side_traction(b.region.side, ids, t.data(), cloud, trace, load.force);
     if (!b.pressure) continue;
     if (load.pressure_force.empty()) load.pressure_force.assign(cloud.size() * d, 0.0);
-    for (const auto i : ids)
-      for (int a = 0; a < d; ++a) load.pressure_force[i * d + a] -= *b.pressure * n[a] * cloud.volume[i] / h;
+    add_side_traction(b.region.side, ids, tp.data(), cloud, trace, load.pressure_force);
   }
   return load;
 }
@@ -142,19 +155,6 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
   }
   const Families families = scene_families(s, p.cloud);
   p.bonds = families.bonds();
-  FaceOf face_of;
-  p.loading = make_loading(s, s.boundary, p.cloud, face_of);
-  std::vector<FaceOf> stage_faces;
-  if (s.load_path() && s.stages.empty()) {
-    p.stages.push_back({"load", s.solver.load_steps, p.loading});
-    stage_faces.push_back(face_of);
-  }
-  for (const auto& st : s.stages) {
-    std::vector<BoundarySpec> boundary = s.boundary;
-    boundary.insert(boundary.end(), st.boundary.begin(), st.boundary.end());
-    stage_faces.emplace_back();
-    p.stages.push_back({st.name, st.steps, make_loading(s, boundary, p.cloud, stage_faces.back())});
-  }
   for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
   if (timer) timer->start("operators");
   CorrespondenceOptions opt;
@@ -169,16 +169,34 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
   if (s.model.kinematics == "finite_rotation") opt.kinematics = Kinematics::finite_rotation;
   opt.follower_pressure = s.model.follower_pressure;
   Surface surface;
-  if (opt.formulation != Formulation::classical) {
+  BoundaryFacets facets;
+  if (opt.formulation == Formulation::consistent) {
+    facets = lattice_facets(s.geometry, p.cloud);
+  } else if (opt.formulation != Formulation::classical) {
     // E: within 2 delta of the surface (THEORY sec. 5); the strong form makes E everything.
     const double delta = *std::max_element(families.support.begin(), families.support.end());
     surface = find_surface(s.geometry, p.cloud,
                            opt.formulation == Formulation::strong ? INFINITY : 2.0 * delta);
   }
   try {
-    p.model = std::make_unique<CorrespondenceModel>(p.cloud, families, s.material, opt, std::move(surface));
+    p.model = std::make_unique<CorrespondenceModel>(p.cloud, families, s.material, opt, std::move(surface),
+                                                    std::move(facets));
   } catch (const InputError& e) {
     throw InputError(s.source + ": " + horizon + ": " + e.what());
+  }
+  const BoundaryTrace* trace = &p.model->trace();
+  FaceOf face_of;
+  p.loading = make_loading(s, s.boundary, p.cloud, face_of, trace);
+  std::vector<FaceOf> stage_faces;
+  if (s.load_path() && s.stages.empty()) {
+    p.stages.push_back({"load", s.solver.load_steps, p.loading});
+    stage_faces.push_back(face_of);
+  }
+  for (const auto& st : s.stages) {
+    std::vector<BoundarySpec> boundary = s.boundary;
+    boundary.insert(boundary.end(), st.boundary.begin(), st.boundary.end());
+    stage_faces.emplace_back();
+    p.stages.push_back({st.name, st.steps, make_loading(s, boundary, p.cloud, stage_faces.back(), trace)});
   }
   if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, p.model->G());
   for (std::size_t k = 0; k < p.stages.size(); ++k)

@@ -370,8 +370,17 @@ TEST_CASE("an unknown stabilization storage is named", "[cli]") {
 TEST_CASE("the fused stabilization with a neighbour count is bad input", "[cli]") {
   // k nearest neighbours make families that are not symmetric: fused cannot apply.
   const std::string s = with(with(tiny_scene, "horizon: {ratio: 3.015}", "horizon: {neighbors: 12}"), "solver:\n",
-                             "model:\n  stabilization_storage: fused\nsolver:\n");
+                             "model:\n  formulation: classical\n  stabilization_storage: fused\nsolver:\n");
   require_rejected(s, {"model.stabilization_storage: fused needs symmetric families"});
+}
+
+TEST_CASE("the consistent formulation refuses a stabilization storage other than assembled", "[cli]") {
+  // Its corrected G has not the first-order identities the fused and matrix-free forms need.
+  for (const char* storage : {"fused", "matrix_free"}) {
+    const std::string s = with(tiny_scene, "solver:\n",
+                               std::string("model:\n  stabilization_storage: ") + storage + "\nsolver:\n");
+    require_rejected(s, {at_line(s, "stabilization_storage:", "model.stabilization_storage:")});
+  }
 }
 
 TEST_CASE("an operator order other than 1 or 2 is named", "[cli]") {

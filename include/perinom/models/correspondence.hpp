@@ -7,10 +7,19 @@
 ///            optionally follow the deformed surface: follower_pressure.hpp).
 /// strong:    the strong form at every particle (E = everything), exact for uniform stress
 ///            on irregular clouds too.
+/// consistent (the default of scenes): the weak form everywhere with the variationally
+///            consistent gradient G~ (consistent_gradient.hpp), f = G~^T (V . P(G~ u)) + S u,
+///            and tractions as work-consistent loads at the boundary facets (boundary_trace.hpp).
+///            Symmetric and positive semi-definite like classical, with the surface effect
+///            removed: the uniform-stress patch test is exact on any cloud whose facets close
+///            the body. improved and strong are not symmetric: their strong-form rows can make
+///            the discrete problem unstable (complex or negative eigenvalues of M^-1 K), which
+///            is why they are no longer the default (docs/theory.md).
 #include <functional>
 #include <memory>
 #include <optional>
 
+#include "perinom/geometry/boundary_facets.hpp"
 #include "perinom/geometry/point_cloud.hpp"
 #include "perinom/geometry/surface.hpp"
 #include "perinom/materials/linear_elastic.hpp"
@@ -18,6 +27,8 @@
 #include "perinom/models/tangent_model.hpp"
 #include "perinom/models/plastic_points.hpp"
 #include "perinom/neighbors/families.hpp"
+#include "perinom/operators/boundary_trace.hpp"
+#include "perinom/operators/consistent_gradient.hpp"
 #include "perinom/operators/gradient_operator.hpp"
 #include "perinom/operators/bond_weights.hpp"
 #include "perinom/operators/influence.hpp"
@@ -27,9 +38,9 @@
 
 namespace perinom {
 
-enum class Formulation { classical, improved, strong };
+enum class Formulation { classical, improved, strong, consistent };
 
-/// Parses "classical", "improved", "strong"; false if unknown.
+/// Parses "classical", "improved", "strong", "consistent"; false if unknown.
 bool parse_formulation(const std::string& name, Formulation& f);
 
 /// fused: inside the products of G (FusedStabilization: one value per bond, the fastest;
@@ -68,10 +79,12 @@ class CorrespondenceModel : public TangentModel {
  public:
   /// Assembles G (and S when C_hg > 0) once. Throws InputError for a singular shape tensor
   /// (or second-order fit), or a stabilization storage the operator order cannot use.
-  /// The improved and strong formulations need the surface data (find_surface).
+  /// The improved and strong formulations need the surface data (find_surface), the
+  /// consistent one the boundary facets (lattice_facets). The consistent formulation stores S
+  /// assembled (fused storage is refused: it rests on G's first-order identities).
   CorrespondenceModel(const PointCloud& cloud, const Families& families,
                       const LinearElastic& material, const CorrespondenceOptions& options,
-                      Surface surface = {});
+                      Surface surface = {}, BoundaryFacets facets = {});
   // The stabilization refers to this object's G: no copies, no moves.
   CorrespondenceModel(const CorrespondenceModel&) = delete;
   CorrespondenceModel& operator=(const CorrespondenceModel&) = delete;
@@ -118,8 +131,13 @@ class CorrespondenceModel : public TangentModel {
   const LinearElastic& material() const { return material_; }
   const std::vector<double>& volume() const { return volume_; }
   Formulation formulation() const { return formulation_; }
-  /// Surface data (empty for the classical formulation).
+  /// Surface data (empty for the classical and consistent formulations).
   const Surface& surface() const { return surface_; }
+  /// The consistent formulation: the trace on the boundary facets (from the uncorrected G, as
+  /// the boundary measure was), for work-consistent loads; empty otherwise.
+  const BoundaryTrace& trace() const { return trace_; }
+  /// The consistent formulation: how the correction of G went.
+  const ConsistencyReport& consistency() const { return consistency_; }
 
  private:
   int dim_;
@@ -137,10 +155,15 @@ class CorrespondenceModel : public TangentModel {
   std::vector<double> lap_;          // fused: the weighted Laplacian of u
   std::optional<PlasticPoints> plastic_;
   std::vector<double> C_;            // plasticity: per-particle tangents (prepare_tangent)
+  BoundaryTrace trace_;
+  ConsistencyReport consistency_;
   std::optional<FollowerPressure> follower_;
   std::vector<double> follower_tangent_;  // its local rows at the last prepare_tangent
   void build_second_order(const PointCloud& cloud, const Families& families, const BondWeights& weights,
-                          const CorrespondenceOptions& options);
+                          const CorrespondenceOptions& options, BoundaryFacets& facets);
+  /// Replaces G by G~ (consistent_gradient.hpp) after keeping the trace of the facets.
+  void make_consistent(const PointCloud& cloud, const Families& families, const BondWeights& weights,
+                       BoundaryFacets& facets, WeightPrecision precision);
   void visit_rows(const PointwiseTangent& C,
                   const std::function<void(std::size_t, const std::vector<ParticleId>&,
                                            const std::vector<double>&)>& visit,

@@ -27,13 +27,13 @@ struct DiscretizationSpec {
 
 struct ModelSpec {
   std::string type = "correspondence";  ///< correspondence | thin_plate
-  std::string formulation = "improved";
+  std::string formulation = "consistent";
   double stabilization = 0.5;  ///< C_hg (thin_plate: of the operator energy)
   std::string stabilization_storage = "auto";  ///< auto | fused | assembled | matrix_free
   std::string weight_precision = "double";          ///< double | single (G's stored weights)
   std::string kinematics = "small_strain";  ///< small_strain | finite_rotation (plasticity)
   bool follower_pressure = false;  ///< pressures follow the deformed surface (finite_rotation; its default)
-  int operator_order = 1;  ///< 1 | 2: the fit G comes from (CorrespondenceOptions::operator_order)
+  int operator_order = 2;  ///< 1 | 2 (default 2 with the consistent formulation, 1 otherwise): the fit G comes from (CorrespondenceOptions::operator_order)
 };
 
 /// One boundary condition on a region. Each of the three may be given: components to

@@ -1,0 +1,49 @@
+#pragma once
+/// @file The variationally consistent gradient G~ (docs/theory.md, "consistent formulation";
+/// the integration constraint of Chen, Hillman and Rueter 2013 on the nonlocal gradient).
+#include <vector>
+
+#include "perinom/geometry/point_cloud.hpp"
+#include "perinom/neighbors/families.hpp"
+#include "perinom/operators/bond_weights.hpp"
+#include "perinom/operators/gradient_operator.hpp"
+
+namespace perinom {
+
+/// How the correction went.
+struct ConsistencyReport {
+  int iterations = 0;            ///< preconditioned CG iterations (largest of the d solves)
+  double residual = 0.0;         ///< |c - G~^T V 1| / |c - G^T V 1| after the solve
+  double rhs_defect = 0.0;       ///< the part of the right-hand side outside L's range, relative
+  double relative_change = 0.0;  ///< |G~ - G| / |G| over the stored weights
+  bool converged = false;
+};
+
+struct ConsistencyOptions {
+  double tolerance = 1e-13;  ///< the CG's target, on the relative residual of the column constraints
+  /// The correction counts as converged below this relative residual (rounding can keep the
+  /// target out of reach on large clouds; the patch test's error is of this order).
+  double converged_tolerance = 1e-11;
+  int max_iterations = 50000;
+};
+
+/// Corrects the gradient weights g (bonds x d, family order; the diagonal of G is -sum_j g_ij;
+/// from the first- or the second-order fit) to g~ = g + Delta such that
+///  - G~ differentiates linear fields exactly, like G (sum_j Delta_ij xi_ij = 0);
+///  - its columns satisfy the discrete divergence theorem sum_i V_i G~_b[i][j] = c_j[b], with
+///    c the boundary measure (BoundaryTrace::column_measure);
+///  - |Delta| is least in the norm sum_ij Delta_ij^2 / (w_ij V_j).
+/// Then Delta_ij[b] = V_i w_ij V_j r_ij(gamma_b), with r_ij(f) = f_j - f_i - (G1 f)_i . xi_ij
+/// the residual of the first-order least-squares fit (G1: the first-order operator of these
+/// weights) of a scalar field gamma_b solving L gamma_b = c_b - G_b^T V 1. L is symmetric
+/// positive semi-definite (gamma^T L gamma = sum_i V_i^2 sum_j w_ij V_j r_ij^2; null space: the
+/// linear fields), solved by Jacobi-preconditioned CG, matrix-free (two bond passes per
+/// iteration). Returns g~ in g's layout.
+std::vector<double> consistent_gradient_weights(const PointCloud& cloud, const Families& families,
+                                                const BondWeights& weights, const GradientOperator& G1,
+                                                const std::vector<double>& g,
+                                                const std::vector<double>& c,
+                                                const ConsistencyOptions& options = {},
+                                                ConsistencyReport* report = nullptr);
+
+}  // namespace perinom
