@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace perinom {
 
@@ -61,6 +62,45 @@ void Loading::begin_stage(const Loading* previous, const double* u) {
 
 void Loading::zero_fixed(double* r) const {
   for (const auto dof : fixed) r[dof] = 0.0;
+}
+
+void Loading::index_couplings() {
+  std::unordered_map<std::int64_t, std::int64_t> constraint_of;
+  for (std::size_t k = 0; k < fixed.size(); ++k) constraint_of[fixed[k]] = static_cast<std::int64_t>(k);
+  coupled_constraint.assign(coupled.size(), -1);
+  for (std::size_t c = 0; c < coupled.size(); ++c) {
+    const auto it = constraint_of.find(coupled[c]);
+    if (it != constraint_of.end()) coupled_constraint[c] = it->second;
+  }
+  lambda_.assign(fixed.size(), 0.0);
+  sum_.assign(fixed.size(), 0.0);
+}
+
+void Loading::reduce(double* r) const {
+  if (!galerkin()) return zero_fixed(r);
+  const std::size_t m = fixed.size();
+  // (E_FF)^T lambda = -r_F by Jacobi sweeps: E_FF is its diagonal 1/scale plus the small
+  // couplings among constrained dofs of one face (a reconstruction reads its neighbours on the
+  // face), so the sweeps contract quickly; they stop at rounding.
+  double size = 0.0;
+  for (std::size_t k = 0; k < m; ++k) lambda_[k] = -scale[k] * r[fixed[k]], size = std::max(size, std::abs(lambda_[k]));
+  for (int sweep = 0; sweep < 200 && size > 0.0; ++sweep) {
+    std::fill(sum_.begin(), sum_.end(), 0.0);
+    for (std::size_t k = 0; k < m; ++k)
+      for (Offset c = couplings[k]; c < couplings[k + 1]; ++c)
+        if (coupled_constraint[c] >= 0) sum_[coupled_constraint[c]] += coef[c] * lambda_[k];
+    double change = 0.0;
+    for (std::size_t l = 0; l < m; ++l) {
+      const double next = -scale[l] * (r[fixed[l]] + sum_[l]);
+      change = std::max(change, std::abs(next - lambda_[l]));
+      lambda_[l] = next;
+    }
+    if (change <= 1e-15 * size) break;
+  }
+  for (std::size_t k = 0; k < m; ++k)
+    for (Offset c = couplings[k]; c < couplings[k + 1]; ++c)
+      if (coupled_constraint[c] < 0) r[coupled[c]] += coef[c] * lambda_[k];
+  zero_fixed(r);
 }
 
 }  // namespace perinom

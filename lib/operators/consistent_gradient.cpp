@@ -140,7 +140,9 @@ std::vector<double> consistent_gradient_weights(const PointCloud& cloud, const F
     if (!(e_norm > 0.0)) continue;
     std::vector<double> consistent = e;
     project_out(null, consistent);
-    rep.rhs_defect = std::max(rep.rhs_defect, std::sqrt(std::max(0.0, e_norm * e_norm - dot(consistent, consistent))) / e_norm);
+    double removed = 0.0;
+    for (std::size_t j = 0; j < n; ++j) removed += (e[j] - consistent[j]) * (e[j] - consistent[j]);
+    rep.rhs_defect = std::max(rep.rhs_defect, std::sqrt(removed) / e_norm);
     // Preconditioned CG on the consistent singular system L gamma = e, restarted from the
     // true residual: the recursive one drifts from it by rounding (about 1e-11 relative on
     // long solves), and a restart removes that floor.

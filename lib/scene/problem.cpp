@@ -65,28 +65,46 @@ Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary,
 }
 
 /// Face-located constraints: u_i + (grad u)_i . r = u_bar with r from the particle to its
-/// face, i.e. u_i (1 - sum_j c_j) + sum_j c_j u_j = u_bar with c_j = g_ij . r.
+/// face, i.e. u_i (1 - sum_j c_j) + sum_j c_j u_j = u_bar with c_j = g_ij . r. With a trace (the
+/// consistent formulation) the point is the centroid of the particle's facet on that face and
+/// the row is the trace's own, so the constraint reacts exactly where a facet load acts.
 void couple_to_faces(Loading& load, const FaceOf& face_of, const BoxGeometry& box,
-                     const PointCloud& cloud, const GradientOperator& G) {
+                     const PointCloud& cloud, const GradientOperator& G, const BoundaryTrace& trace) {
   const int d = cloud.dim;
+  std::map<std::pair<std::int64_t, int>, std::size_t> facet_of;  // (particle, side code) -> facet
+  for (std::size_t k = 0; k < trace.facets().size(); ++k)
+    facet_of[{trace.facets().particle[k], trace.facets().side[k]}] = k;
   load.couplings.assign(1, 0);
   for (std::size_t k = 0; k < load.fixed.size(); ++k) {
     const auto it = face_of.find(load.fixed[k]);
-    double sum = 0.0;
+    double self = 1.0;
     if (it != face_of.end()) {
       const std::size_t i = load.fixed[k] / d, a = load.fixed[k] % d;
       const int axis = it->second.axis;
-      const double r = (it->second.at_max ? box.max[axis] : box.min[axis]) - cloud.x[i * d + axis];
-      for (Offset m = G.offsets()[i]; m < G.offsets()[i + 1]; ++m) {
-        const double c = G.weight(m)[axis] * r;
-        load.coupled.push_back(static_cast<std::int64_t>(G.cols()[m]) * d + a);
-        load.coef.push_back(c);
-        sum += c;
+      const auto facet = facet_of.find({static_cast<std::int64_t>(i), 2 * axis + (it->second.at_max ? 1 : 0)});
+      if (facet != facet_of.end()) {
+        for (std::size_t e = trace.row_begin(facet->second); e < trace.row_end(facet->second); ++e) {
+          if (trace.col(e) == static_cast<ParticleId>(i)) {
+            self = trace.coef(e);
+            continue;
+          }
+          load.coupled.push_back(static_cast<std::int64_t>(trace.col(e)) * d + a);
+          load.coef.push_back(trace.coef(e));
+        }
+      } else {
+        const double r = (it->second.at_max ? box.max[axis] : box.min[axis]) - cloud.x[i * d + axis];
+        for (Offset m = G.offsets()[i]; m < G.offsets()[i + 1]; ++m) {
+          const double c = G.weight(m)[axis] * r;
+          load.coupled.push_back(static_cast<std::int64_t>(G.cols()[m]) * d + a);
+          load.coef.push_back(c);
+          self -= c;
+        }
       }
     }
-    load.scale.push_back(1.0 / (1.0 - sum));
+    load.scale.push_back(1.0 / self);
     load.couplings.push_back(static_cast<Offset>(load.coupled.size()));
   }
+  load.index_couplings();
 }
 
 }  // namespace
@@ -198,9 +216,13 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
     stage_faces.emplace_back();
     p.stages.push_back({st.name, st.steps, make_loading(s, boundary, p.cloud, stage_faces.back(), trace)});
   }
-  if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, p.model->G());
+  if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, p.model->G(), *trace);
+  // The seed's collocation formulations keep collocated constraints (loading.hpp).
+  const bool collocated = opt.formulation == Formulation::improved || opt.formulation == Formulation::strong;
+  p.loading.collocated = collocated;
+  for (auto& stage : p.stages) stage.loading.collocated = collocated;
   for (std::size_t k = 0; k < p.stages.size(); ++k)
-    if (!stage_faces[k].empty()) couple_to_faces(p.stages[k].loading, stage_faces[k], s.geometry, p.cloud, p.model->G());
+    if (!stage_faces[k].empty()) couple_to_faces(p.stages[k].loading, stage_faces[k], s.geometry, p.cloud, p.model->G(), *trace);
   if (timer) timer->stop();
   return p;
 }

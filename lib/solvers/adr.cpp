@@ -40,7 +40,7 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     double reaction2 = 0.0;
     for (const auto dof : loading.fixed) reaction2 += fint_[dof] * fint_[dof];
     parallel_for(n, [&](std::size_t k) { f[k] = (forced ? loading.force_at(s, k) : 0.0) - fint_[k]; });
-    loading.zero_fixed(f.data());
+    loading.reduce(f.data());
     const double fnorm = norm(f);
     if (!std::isfinite(fnorm)) {
       u = last_good_;

@@ -74,16 +74,21 @@ double reciprocal_pivot_ratio(SUNLinearSolver ls) {
 SolveReport solve_newton(TangentModel& model, const Loading& loading,
                          const NewtonOptions& opt, std::vector<double>& u, Progress* progress) {
   static_assert(sizeof(sunindextype) == sizeof(std::int64_t), "SUNDIALS must use 64-bit indices");
-  const std::size_t n = model.dofs();
-  u.resize(n, 0.0);
+  u.resize(model.dofs(), 0.0);
   StaticSystem system(model, loading);
+  // The unknowns: u, then the multipliers of face-located constraints (kept across steps as
+  // the next step's first guess).
+  const std::size_t n = system.dofs();
+  std::vector<double> z(u);
+  z.resize(n, 0.0);
+  const auto to_u = [&] { std::copy_n(z.begin(), u.size(), u.begin()); };
   SolveReport rep;
   rep.history.columns = {"load_step", "load_factor", "newton_iterations", "residual"};
 
   SUNContext raw_ctx = nullptr;
   check(SUNContext_Create(nullptr, &raw_ctx), "SUNContext_Create");
   Context ctx(raw_ctx);
-  Vector y(N_VMake_Serial(n, u.data(), ctx.get()));
+  Vector y(N_VMake_Serial(n, z.data(), ctx.get()));
   Vector ones(N_VNew_Serial(n, ctx.get())), fscale(N_VNew_Serial(n, ctx.get()));
   N_VConst(1.0, ones.get());
   const CsrMatrix& A = system.jacobian();
@@ -114,7 +119,7 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
   for (int step = 1; step <= opt.load_steps; ++step) {
     data.s = static_cast<double>(step) / opt.load_steps;
     // Scale the residual by its size at the start of the step, so the tolerance is relative.
-    system.residual(u.data(), data.s, R.data());
+    system.residual(z.data(), data.s, R.data());
     double r0 = 0.0;
     for (const double r : R) r0 = std::max(r0, std::abs(r));
     N_VConst(r0 > 0.0 ? 1.0 / r0 : 1.0, fscale.get());
@@ -133,10 +138,13 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
                        "): the body can move without deforming; a boundary condition is probably missing "
                        "(fix enough components to stop rigid translation and rotation)");
     // The residual as ADR measures it, for a like-for-like report.
-    system.residual(u.data(), data.s, R.data());
+    to_u();
+    system.residual(z.data(), data.s, R.data());
+    R.resize(u.size());  // the constraint rows are not forces
     loading.zero_fixed(R.data());
     const double load = system.load_norm(u.data(), data.s);
     rep.residual = load > 0.0 ? norm(R) / load : norm(R);
+    R.resize(n);
     rep.history.add({double(step), data.s, double(iterations), rep.residual});
     if (progress) {
       sample.iteration = rep.iterations, sample.load_step = step, sample.residual = rep.residual;

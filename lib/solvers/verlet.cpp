@@ -39,11 +39,13 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   auto accelerate = [&](double t) {
     model.internal_force(u.data(), fint.data());
     const double s = factor(t);
+    // The constrained dofs' forces move to the free dofs they couple to (Galerkin), then a = f / m.
+    parallel_for(n, [&](std::size_t k) { a[k] = (fext ? s * fext[k] : 0.0) - fint[k]; });
+    loading.reduce(a.data());
     const double a2 = parallel_sums<1>(n, [&](std::size_t k, double* acc) {
-      a[k] = ((fext ? s * fext[k] : 0.0) - fint[k]) * inv_mass[k];
+      a[k] *= inv_mass[k];
       acc[0] += a[k] * a[k];
     })[0];
-    loading.zero_fixed(a.data());
     if (!std::isfinite(a2)) {
       u = last_good;
       throw SolveError("Verlet: the internal force became NaN or Inf at step " +

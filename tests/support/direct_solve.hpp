@@ -27,7 +27,7 @@ inline std::vector<double> direct_solve(CorrespondenceModel& model, const Loadin
   system.residual(zero.data(), 1.0, R0.data());
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(K);
   const Eigen::VectorXd u = lu.solve(-Eigen::Map<const Eigen::VectorXd>(R0.data(), n));
-  return std::vector<double>(u.data(), u.data() + n);
+  return std::vector<double>(u.data(), u.data() + model.dofs());  // without the multipliers
 }
 
 }  // namespace perinom::test

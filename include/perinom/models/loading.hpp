@@ -25,6 +25,14 @@ struct Loading {
   std::vector<Offset> couplings;    ///< CSR offsets, fixed.size() + 1 entries
   std::vector<std::int64_t> coupled;
   std::vector<double> coef, scale;
+  /// Face-located constraints in collocation rather than Galerkin form: the constrained dof's
+  /// own row holds the constraint and its reaction stays on that particle (reduce is then
+  /// zero_fixed, and StaticSystem adds no multipliers). The improved and strong formulations,
+  /// collocation schemes near the surface themselves, use it: their patch tests are exact
+  /// with it and not with the Galerkin form.
+  bool collocated = false;
+  /// For each coupling: the constraint on its dof, or -1 for a free dof (index_couplings).
+  std::vector<std::int64_t> coupled_constraint;
   // Where a load stage starts (begin_stage); empty: from zero.
   std::vector<double> value0;  ///< the constrained values at s = 0 (m)
   std::vector<double> force0;  ///< the external force at s = 0 (N)
@@ -63,7 +71,22 @@ struct Loading {
   void impose(double s, double* u) const;
   /// Zeros the constrained entries of r (a residual or a velocity).
   void zero_fixed(double* r) const;
+  /// The Galerkin reduction of a force (or residual) r onto the free dofs: with the
+  /// constraints written E u = t (row k: 1/scale_k on its own dof, coef on the coupled ones),
+  /// the multipliers lambda solving (E_FF)^T lambda = -r_F carry the constrained dofs' force
+  /// to the free ones, r_R += (E_FR)^T lambda, and r_F = 0. So a face-located constraint
+  /// reacts on every particle its reconstruction reads, as the trace of a facet load does,
+  /// and the reduced stiffness is T^T K T (symmetric when K is). Without couplings it is
+  /// zero_fixed. Needs index_couplings after the couplings change; allocates nothing.
+  void reduce(double* r) const;
+  /// Fills coupled_constraint and the scratch reduce needs.
+  void index_couplings();
   bool coupled_constraints() const { return !coupled.empty(); }
+  /// Face-located constraints in the Galerkin form (multipliers, reduce).
+  bool galerkin() const { return coupled_constraints() && !collocated; }
+
+ private:
+  mutable std::vector<double> lambda_, sum_;  // scratch of reduce
 };
 
 /// One stage of a load path: its loading (values as increments over the stage, forces as
