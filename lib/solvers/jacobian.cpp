@@ -73,7 +73,10 @@ void StaticSystem::fill(bool symbolic) {
 #pragma omp critical(perinom_jacobian_kappa)
     diag_max = std::max(diag_max, local_max);
   });
-  kappa_ = diag_max > 0.0 ? diag_max : 1.0;
+  // kappa is fixed at the first fill: the residual's multiplier terms kappa E^T y would
+  // otherwise jump when a plastic tangent changes it, and the line search would compare
+  // residuals of two different systems.
+  if (symbolic) kappa_ = diag_max > 0.0 ? diag_max : 1.0;
   // Collocated constraints: row fixed[k] is kappa E_k (kappa at the dof without couplings).
   std::vector<std::pair<std::int64_t, double>> row;
   for (std::size_t k = 0; k < loading_.fixed.size() && m_ == 0; ++k) {
