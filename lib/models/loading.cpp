@@ -5,14 +5,41 @@
 
 namespace perinom {
 
-void Loading::fix(std::int64_t dof, double v) {
+void Loading::fix(std::int64_t dof, double v, int support_index) {
+  const bool tracked = support_index >= 0 || !support.empty();
+  if (tracked) support.resize(fixed.size(), -1);
   for (std::size_t k = 0; k < fixed.size(); ++k)
     if (fixed[k] == dof) {
       value[k] = v;
+      if (tracked) support[k] = support_index;
       return;
     }
   fixed.push_back(dof);
   value.push_back(v);
+  if (tracked) support.push_back(support_index);
+}
+
+int Loading::add_support(const std::string& name) {
+  for (std::size_t g = 0; g < support_names.size(); ++g)
+    if (support_names[g] == name) return static_cast<int>(g);
+  support_names.push_back(name);
+  return static_cast<int>(support_names.size()) - 1;
+}
+
+void Loading::reactions(const double* fint, double s, int dpp, double* R) const {
+  std::fill(R, R + support_names.size() * dpp, 0.0);
+  for (std::size_t k = 0; k < support.size(); ++k) {
+    if (support[k] < 0) continue;
+    const std::int64_t dof = fixed[k];
+    R[support[k] * dpp + dof % dpp] += fint[dof] - (has_force() ? force_at(s, dof) : 0.0);
+  }
+}
+
+std::vector<std::string> Loading::reaction_columns(int dpp) const {
+  std::vector<std::string> out;
+  for (const auto& name : support_names)
+    for (int a = 0; a < dpp; ++a) out.push_back(name + ".R" + (dpp == 1 ? "" : std::string(1, "xyz"[a])));
+  return out;
 }
 
 void Loading::impose(double s, double* u) const {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numeric>
 
@@ -40,10 +41,14 @@ Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary,
     const auto ids = select(b.region, s.geometry, cloud);
     if (ids.empty()) throw InputError(b.where + ".region: selects no particle");
     for (int a = 0; a < d; ++a) {
+    const bool constrains = std::any_of(b.fix.begin(), b.fix.begin() + d, [](bool f) { return f; }) ||
+                            std::any_of(b.displacement.begin(), b.displacement.begin() + d,
+                                        [](const std::optional<double>& v) { return v.has_value(); });
+    const int support = constrains ? load.add_support(b.key) : -1;
       if (!b.fix[a] && !b.displacement[a]) continue;
       for (const auto i : ids) {
         const std::int64_t dof = static_cast<std::int64_t>(i) * d + a;
-        load.fix(dof, b.displacement[a].value_or(0.0));
+        load.fix(dof, b.displacement[a].value_or(0.0), support);
         if (b.at_face) face_of[dof] = b.region.side;
         else face_of.erase(dof);
       }
@@ -90,6 +95,43 @@ void couple_to_faces(Loading& load, const FaceOf& face_of, const BoxGeometry& bo
 }
 
 }  // namespace
+/// The relative tolerance of the balance constraints: rigid_body asks of the loads: far above
+/// rounding in the sums, far below any load a user means to apply.
+constexpr double kBalanceTolerance = 1e-8;
+
+/// constraints: rigid_body. Refuses loads that are not balanced (every stage's loads at its
+/// end), then pins the body in every loading.
+void pin_rigid_body(Problem& p) {
+  const Scene& s = p.scene;
+  std::vector<Loading*> loadings = {&p.loading};
+  for (auto& st : p.stages) loadings.push_back(&st.loading);
+  const int d = s.dim;
+  for (std::size_t k = 0; k < loadings.size(); ++k) {
+    const LoadResultant r = load_resultant(p.cloud, loadings[k]->force);
+    if (r.balanced(kBalanceTolerance)) continue;
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "the external loads%s are not balanced: resultant force (%.6g, %.6g%s) N, moment %s%.6g%s N m "
+                  "about the centroid, against %.6g N of applied force (rigid_body needs a body in equilibrium "
+                  "under its loads alone)",
+                  k == 0 ? "" : (" of stage '" + p.stages[k - 1].name + "'").c_str(), r.force[0], r.force[1],
+                  d == 3 ? (", " + std::to_string(r.force[2])).c_str() : "", d == 3 ? "(" : "", r.moment[0],
+                  d == 3 ? (", " + std::to_string(r.moment[1]) + ", " + std::to_string(r.moment[2]) + ")").c_str() : "",
+                  r.force_scale);
+    throw InputError(s.source + ": constraints: " + text);
+  }
+  try {
+    p.pins = rigid_body_pins(p.cloud);
+  } catch (const InputError& e) {
+    throw InputError(s.source + ": constraints: rigid_body: " + e.what());
+  }
+  for (Loading* load : loadings) {
+    const int support = load->add_support("rigid_body");
+    for (const auto& pin : p.pins)
+      for (const int c : pin.components) load->fix(static_cast<std::int64_t>(pin.particle) * d + c, 0.0, support);
+  }
+}
+
 
 BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud) {
   const int d = cloud.dim;
@@ -199,6 +241,7 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
     p.stages.push_back({st.name, st.steps, make_loading(s, boundary, p.cloud, stage_faces.back(), trace)});
   }
   if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, p.model->G());
+  if (s.constraints == "rigid_body") pin_rigid_body(p);
   for (std::size_t k = 0; k < p.stages.size(); ++k)
     if (!stage_faces[k].empty()) couple_to_faces(p.stages[k].loading, stage_faces[k], s.geometry, p.cloud, p.model->G());
   if (timer) timer->stop();

@@ -7,6 +7,7 @@
 #include "perinom/core/timer.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/models/loading.hpp"
+#include "perinom/models/rigid_body.hpp"
 #include "perinom/models/thin_plate.hpp"
 #include "perinom/scene/scene.hpp"
 
@@ -32,6 +33,8 @@ struct Problem {
   Loading loading;                 ///< the scene's `boundary` at solver.load_steps (single-stage solvers)
   std::vector<LoadStage> stages;   ///< load-path scenes (Scene::load_path): one per stage
   std::vector<BoundProbe> probes;
+  /// constraints: rigid_body: the pins added to every loading (support "rigid_body").
+  std::vector<RigidBodyPin> pins;
 
   TangentModel& physics() { return plate ? static_cast<TangentModel&>(*plate) : *model; }
   const TangentModel& physics() const { return plate ? static_cast<const TangentModel&>(*plate) : *model; }
@@ -49,8 +52,8 @@ Families scene_families(const Scene& scene, const PointCloud& cloud);
 Problem build_plate_problem(const Scene& scene, PhaseTimer* timer);
 
 /// Builds the problem (lattice, families, operators, loading, probes). Phases are timed
-/// in `timer` when given. Throws InputError for a region that selects no particle or a
-/// singular shape tensor.
+/// in `timer` when given. Throws InputError for a region that selects no particle, a
+/// singular shape tensor, or (constraints: rigid_body) loads that are not balanced.
 Problem build_problem(const Scene& scene, PhaseTimer* timer = nullptr);
 
 /// The fields probes read: displacement u (N x d), 3 x 3 stresses sigma (N x 9), the
