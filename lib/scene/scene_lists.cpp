@@ -141,8 +141,9 @@ void read_probes(const std::vector<YAML::Node>& items, const std::string& source
       f.fail("field", s.thin_plate() ? "a thin_plate probe measures the deflection (field: deflection)"
                                      : "deflection is the field of a thin_plate (model.type: thin_plate)");
     p.reconstruct = f.boolean("reconstruct", p.reconstruct);
-    if (p.reconstruct && (p.is_line || p.field != "displacement"))
-      f.fail("reconstruct", "only point probes of the displacement are reconstructed");
+    if (p.reconstruct && (p.is_line || (p.field != "displacement" && p.field != "stress" &&
+                                         p.field != "von_mises" && p.field != "mean_stress")))
+      f.fail("reconstruct", "only point probes of the displacement, stress, von_mises or mean_stress are reconstructed");
     if (p.field == "deflection") {
       if (f.has("component")) f.fail("component", "a deflection probe has no component");
     } else if (p.field == "displacement") {

@@ -64,7 +64,25 @@ struct ProbeFields {
   const std::vector<double>& sigma;
   const std::vector<double>& H;
   const PlasticPoints* plastic = nullptr;
+  /// grad sigma (N x 9 x d, stress_gradient), needed by reconstructed stress probes only.
+  const std::vector<double>* grad_sigma = nullptr;
 };
+
+/// True for the fields computed from the stress alone (stress, von_mises, mean_stress): those
+/// a point probe reconstructs from the stress and its gradient.
+bool stress_field(const std::string& field);
+
+/// The nonlocal gradient of the 3 x 3 stresses sigma (N x 9) by the model's operator G:
+/// out[(i*9 + c)*d + b] = d sigma_c / d x_b at particle i (Pa/m). Exact for linear stress
+/// fields when G is exact for quadratic displacements (operator order 2, classical).
+std::vector<double> stress_gradient(const CorrespondenceModel& model, const std::vector<double>& sigma);
+
+/// sigma(y) = sigma_i + (grad sigma)_i (y - x_i) (9 values) at the point y (d values).
+void reconstruct_stress(const std::vector<double>& sigma, const std::vector<double>& grad_sigma,
+                        const PointCloud& cloud, std::size_t i, const double* y, double* out);
+
+/// The value of a stress field (stress_field(spec.field)) of a 3 x 3 stress.
+double stress_probe_value(const ProbeSpec& spec, const double* sigma3);
 
 /// Mean stress tr(sigma) / 3 of a 3 x 3 stress (Pa, tension positive), and the equivalent
 /// strain sqrt(2/3 e : e) of grad u (d x d; e the deviator of the 3 x 3 small strain, plane
@@ -76,7 +94,9 @@ double equivalent_strain(const double* H, int dim);
 double probe_value(const ProbeSpec& spec, std::size_t i, const ProbeFields& f);
 
 /// A point probe's value: at its nearest particle, or, with `reconstruct`, at the probe's
-/// point through that particle's first-order reconstruction u_i + (grad u)_i (x - x_i).
+/// point through that particle's first-order reconstruction: u_i + (grad u)_i (x - x_i) for
+/// the displacement; for a stress field, the field of sigma_i + (grad sigma)_i (x - x_i)
+/// (needs f.grad_sigma; throws std::logic_error without it).
 double point_probe_value(const BoundProbe& probe, const ProbeFields& f);
 
 }  // namespace perinom
