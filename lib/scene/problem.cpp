@@ -109,15 +109,24 @@ void pin_rigid_body(Problem& p) {
   for (std::size_t k = 0; k < loadings.size(); ++k) {
     const LoadResultant r = load_resultant(p.cloud, loadings[k]->force);
     if (r.balanced(kBalanceTolerance)) continue;
-    char text[400];
-    std::snprintf(text, sizeof text,
-                  "the external loads%s are not balanced: resultant force (%.6g, %.6g%s) N, moment %s%.6g%s N m "
-                  "about the centroid, against %.6g N of applied force (rigid_body needs a body in equilibrium "
-                  "under its loads alone)",
-                  k == 0 ? "" : (" of stage '" + p.stages[k - 1].name + "'").c_str(), r.force[0], r.force[1],
-                  d == 3 ? (", " + std::to_string(r.force[2])).c_str() : "", d == 3 ? "(" : "", r.moment[0],
-                  d == 3 ? (", " + std::to_string(r.moment[1]) + ", " + std::to_string(r.moment[2]) + ")").c_str() : "",
-                  r.force_scale);
+    auto list = [](const double* v, int n) {
+      std::string out = n > 1 ? "(" : "";
+      char buf[32];
+      for (int a = 0; a < n; ++a) {
+        std::snprintf(buf, sizeof buf, "%s%.6g", a ? ", " : "", v[a]);
+        out += buf;
+      }
+      return out + (n > 1 ? ")" : "");
+    };
+    std::string text = "the external loads";
+    if (k > 0) text += " of stage '" + p.stages[k - 1].name + "'";
+    text += " are not balanced: resultant force " + list(r.force.data(), d) + " N, moment " +
+            list(r.moment.data(), d == 2 ? 1 : 3) + " N m about the centroid, against " +
+            list(&r.force_scale, 1) + " N of nodal loads (rigid_body needs a body in equilibrium under its loads alone)";
+    // Layer loads act at the particles: on a jittered cloud their moments need not cancel.
+    if (p.model->trace().empty() && s.discretization.jitter > 0.0)
+      text += "; this formulation applies tractions at the jittered particles, whose moments need not cancel: "
+              "the consistent formulation applies them at the faces";
     throw InputError(s.source + ": constraints: " + text);
   }
   try {
