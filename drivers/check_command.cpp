@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "commands.hpp"
 #include "perinom/core/error.hpp"
@@ -62,6 +63,11 @@ int check(const Options& opt) {
                 dp->friction_angle * 180.0 / M_PI, dp->cohesion, dp->m0, dp->d0, dp->h);
   std::printf("  constraints     %zu fixed degrees of freedom%s\n", p.loading.fixed.size(),
               p.loading.force.empty() ? "" : ", external forces");
+  for (const auto& pin : p.pins) {
+    std::string held;
+    for (const int a : pin.components) held += std::string(held.empty() ? "" : ", ") + "xyz"[a];
+    std::printf("  rigid_body pin  particle %u in %s\n", static_cast<unsigned>(pin.particle), held.c_str());
+  }
   for (std::size_t k = 0; k < scene.stages.size(); ++k)
     std::printf("  stage %zu         %s: %d load steps, %zu fixed degrees of freedom%s\n", k + 1,
                 p.stages[k].name.c_str(), p.stages[k].steps, p.stages[k].loading.fixed.size(),

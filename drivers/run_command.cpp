@@ -20,6 +20,7 @@
 #include "difference.hpp"
 #include "load_path_run.hpp"
 #include "plate_output.hpp"
+#include "reactions_output.hpp"
 #include "snapshot.hpp"
 #include "terminal_progress.hpp"
 
@@ -169,6 +170,7 @@ int run(const Options& opt) {
                 scene.model.follower_pressure
                     ? "pressures follow the deformed surface; traction vectors stay dead loads (reference area)"
                     : "tractions and pressures stay nominal (model.follower_pressure: false)");
+  const Json pins = pin_results(p);
   std::fflush(stdout);
 
   io::PvdSeries series(dir, scene.name);
@@ -225,6 +227,11 @@ int run(const Options& opt) {
   summary["particles"] = p.cloud.size();
   summary["bonds"] = p.bonds;
   summary["threads"] = omp_get_max_threads();
+  if (!p.pins.empty()) {
+    Json constraints = Json::object();
+    constraints["rigid_body"] = pins;
+    summary["constraints"] = constraints;
+  }
   Json solver = Json::object();
   solver["type"] = scene.solver.type;
   solver["iterations"] = static_cast<long long>(rep.iterations);
@@ -238,6 +245,11 @@ int run(const Options& opt) {
   }
   if (!failure.empty()) solver["error"] = failure;
   summary["solver"] = solver;
+  if (failure.empty()) {
+    // The final state's load factor: 1, or Verlet's ramp where the run ended.
+    const double s_end = dynamic && scene.solver.ramp_time > 0.0 ? std::min(1.0, rep.end_time / scene.solver.ramp_time) : 1.0;
+    add_reaction_results(p, scene.load_path() ? p.stages.back().loading : p.loading, s_end, u, dynamic, summary);
+  }
   if (scene.solver.check == "newton" && failure.empty()) {
     timer.start("newton check");
     summary["check"] = scene.load_path() ? load_path_newton_check(p, u, probe_history) : newton_check(p, u);

@@ -1,5 +1,7 @@
 #include "snapshot.hpp"
 
+#include <cmath>
+
 #include "perinom/io/csv_writer.hpp"
 #include "plate_output.hpp"
 
@@ -51,6 +53,29 @@ void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const st
   std::vector<io::PointField> fields = {{"displacement", 3, u3.data()}, {"stress", 9, sigma.data()},
                                         {"von_mises", 1, vm.data()},    {"mean_stress", 1, mean.data()},
                                         {"volume", 1, p.cloud.volume.data()}};
+  // The stress at the surface: each facet owner's stress reconstructed at its facets'
+  // centroids, area-weighted (the facets of a corner particle: their mean); NaN elsewhere.
+  std::vector<double> surface_sigma, surface_vm;
+  const BoundaryFacets& facets = p.model->trace().facets();
+  if (!facets.empty()) {
+    const std::vector<double> grad_sigma = stress_gradient(*p.model, sigma);
+    std::vector<double> area(n, 0.0);
+    surface_sigma.assign(n * 9, 0.0);
+    double s9[9];
+    for (std::size_t k = 0; k < facets.size(); ++k) {
+      const std::size_t i = facets.particle[k];
+      reconstruct_stress(sigma, grad_sigma, p.cloud, i, facets.centroid.data() + k * d, s9);
+      for (int c = 0; c < 9; ++c) surface_sigma[i * 9 + c] += facets.area[k] * s9[c];
+      area[i] += facets.area[k];
+    }
+    surface_vm.assign(n, NAN);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int c = 0; c < 9; ++c) surface_sigma[i * 9 + c] = area[i] > 0.0 ? surface_sigma[i * 9 + c] / area[i] : NAN;
+      if (area[i] > 0.0) surface_vm[i] = von_mises(surface_sigma.data() + i * 9);
+    }
+    fields.push_back({"surface_stress", 9, surface_sigma.data()});
+    fields.push_back({"surface_von_mises", 1, surface_vm.data()});
+  }
   // Improved and strong formulations: subregion 1 = E (strong form), 0 = D (weak form).
   std::vector<double> subregion, surface;
   const Surface& s = p.model->surface();
@@ -81,6 +106,11 @@ ProbeState::ProbeState(const Problem& p, const std::vector<double>& u)
     : H(p.cloud.size() * p.cloud.dim * p.cloud.dim) {
   p.model->stress3(u.data(), sigma);
   p.model->gradient(u.data(), H.data());
+  for (const auto& probe : p.probes)
+    if (!probe.spec.is_line && probe.spec.reconstruct && stress_field(probe.spec.field)) {
+      grad_sigma = stress_gradient(*p.model, sigma);
+      break;
+    }
 }
 
 }  // namespace perinom::cli

@@ -1,5 +1,6 @@
 #include "perinom/geometry/region.hpp"
 
+#include <cmath>
 #include <map>
 
 namespace perinom {
@@ -23,6 +24,15 @@ std::vector<ParticleId> select(const Region& region, const BoxGeometry& box,
                                const PointCloud& cloud) {
   std::vector<ParticleId> ids;
   const int d = cloud.dim;
+  if (region.is_point) {
+    double best = INFINITY;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      double r2 = 0.0;
+      for (int a = 0; a < d; ++a) r2 += (cloud.x[i * d + a] - region.point[a]) * (cloud.x[i * d + a] - region.point[a]);
+      if (r2 < best) best = r2, ids.assign(1, static_cast<ParticleId>(i));
+    }
+    return ids;
+  }
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const double* p = cloud.point(i);
     bool in = true;

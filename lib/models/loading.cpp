@@ -2,18 +2,50 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <unordered_map>
 
 namespace perinom {
 
-void Loading::fix(std::int64_t dof, double v) {
+void Loading::fix(std::int64_t dof, double v, int support_index) {
+  const bool tracked = support_index >= 0 || !support.empty();
+  if (tracked) support.resize(fixed.size(), -1);
   for (std::size_t k = 0; k < fixed.size(); ++k)
     if (fixed[k] == dof) {
       value[k] = v;
+      if (tracked) support[k] = support_index;
       return;
     }
   fixed.push_back(dof);
   value.push_back(v);
+  if (tracked) support.push_back(support_index);
+}
+
+int Loading::add_support(const std::string& name) {
+  for (std::size_t g = 0; g < support_names.size(); ++g)
+    if (support_names[g] == name) return static_cast<int>(g);
+  support_names.push_back(name);
+  return static_cast<int>(support_names.size()) - 1;
+}
+
+void Loading::reactions(const double* fint, double s, int dpp, double* R) const {
+  std::fill(R, R + support_names.size() * dpp, 0.0);
+  const auto residual = [&](std::int64_t dof) { return (has_force() ? force_at(s, dof) : 0.0) - fint[dof]; };
+  // Galerkin supports react through their multipliers, spread over the dofs a constraint
+  // reads; each row of E sums to one, so a constraint's total is its multiplier.
+  if (galerkin()) solve_multipliers(residual);
+  for (std::size_t k = 0; k < support.size(); ++k) {
+    if (support[k] < 0) continue;
+    const std::int64_t dof = fixed[k];
+    R[support[k] * dpp + dof % dpp] += galerkin() ? lambda_[k] : -residual(dof);
+  }
+}
+
+std::vector<std::string> Loading::reaction_columns(int dpp) const {
+  std::vector<std::string> out;
+  for (const auto& name : support_names)
+    for (int a = 0; a < dpp; ++a) out.push_back(name + ".R" + (dpp == 1 ? "" : std::string(1, "xyz"[a])));
+  return out;
 }
 
 void Loading::impose(double s, double* u) const {
@@ -76,14 +108,13 @@ void Loading::index_couplings() {
   sum_.assign(fixed.size(), 0.0);
 }
 
-void Loading::reduce(double* r) const {
-  if (!galerkin()) return zero_fixed(r);
+void Loading::solve_multipliers(const std::function<double(std::int64_t)>& r_at) const {
   const std::size_t m = fixed.size();
   // (E_FF)^T lambda = -r_F by Jacobi sweeps: E_FF is its diagonal 1/scale plus the small
   // couplings among constrained dofs of one face (a reconstruction reads its neighbours on the
   // face), so the sweeps contract quickly; they stop at rounding.
   double size = 0.0;
-  for (std::size_t k = 0; k < m; ++k) lambda_[k] = -scale[k] * r[fixed[k]], size = std::max(size, std::abs(lambda_[k]));
+  for (std::size_t k = 0; k < m; ++k) lambda_[k] = -scale[k] * r_at(fixed[k]), size = std::max(size, std::abs(lambda_[k]));
   for (int sweep = 0; sweep < 200 && size > 0.0; ++sweep) {
     std::fill(sum_.begin(), sum_.end(), 0.0);
     for (std::size_t k = 0; k < m; ++k)
@@ -91,13 +122,18 @@ void Loading::reduce(double* r) const {
         if (coupled_constraint[c] >= 0) sum_[coupled_constraint[c]] += coef[c] * lambda_[k];
     double change = 0.0;
     for (std::size_t l = 0; l < m; ++l) {
-      const double next = -scale[l] * (r[fixed[l]] + sum_[l]);
+      const double next = -scale[l] * (r_at(fixed[l]) + sum_[l]);
       change = std::max(change, std::abs(next - lambda_[l]));
       lambda_[l] = next;
     }
     if (change <= 1e-15 * size) break;
   }
-  for (std::size_t k = 0; k < m; ++k)
+}
+
+void Loading::reduce(double* r) const {
+  if (!galerkin()) return zero_fixed(r);
+  solve_multipliers([r](std::int64_t dof) { return r[dof]; });
+  for (std::size_t k = 0; k < fixed.size(); ++k)
     for (Offset c = couplings[k]; c < couplings[k + 1]; ++c)
       if (coupled_constraint[c] < 0) r[coupled[c]] += coef[c] * lambda_[k];
   zero_fixed(r);

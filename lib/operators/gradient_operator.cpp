@@ -80,6 +80,7 @@ void apply_with(int d, std::size_t n, const Offset* off, const ParticleId* col, 
   if (d == 2 && nc == 1) return k::gradient<2, 1>(n, off, col, w, f, out);
   if (d == 2 && nc == 2) return k::gradient2(n, off, col, w, f, out);
   if (d == 2 && nc == 4) return k::gradient<2, 4>(n, off, col, w, f, out);
+  if (d == 2 && nc == 9) return k::gradient<2, 9>(n, off, col, w, f, out);  // 3 x 3 stresses in 2-D
   if (d == 3 && nc == 1) return k::gradient<3, 1>(n, off, col, w, f, out);
   if (d == 3 && nc == 3) return k::gradient3(n, off, col, w, f, out);
   if (d == 3 && nc == 9) return k::gradient<3, 9>(n, off, col, w, f, out);

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numeric>
+#include <stdexcept>
 
 #include "perinom/core/error.hpp"
 #include "perinom/geometry/boundary_facets.hpp"
@@ -39,11 +41,15 @@ Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary,
   for (const auto& b : boundary) {
     const auto ids = select(b.region, s.geometry, cloud);
     if (ids.empty()) throw InputError(b.where + ".region: selects no particle");
+    const bool constrains = std::any_of(b.fix.begin(), b.fix.begin() + d, [](bool f) { return f; }) ||
+                            std::any_of(b.displacement.begin(), b.displacement.begin() + d,
+                                        [](const std::optional<double>& v) { return v.has_value(); });
+    const int support = constrains ? load.add_support(b.key) : -1;
     for (int a = 0; a < d; ++a) {
       if (!b.fix[a] && !b.displacement[a]) continue;
       for (const auto i : ids) {
         const std::int64_t dof = static_cast<std::int64_t>(i) * d + a;
-        load.fix(dof, b.displacement[a].value_or(0.0));
+        load.fix(dof, b.displacement[a].value_or(0.0), support);
         if (b.at_face) face_of[dof] = b.region.side;
         else face_of.erase(dof);
       }
@@ -105,6 +111,52 @@ void couple_to_faces(Loading& load, const FaceOf& face_of, const BoxGeometry& bo
     load.couplings.push_back(static_cast<Offset>(load.coupled.size()));
   }
   load.index_couplings();
+}
+
+/// The relative tolerance of the balance constraints: rigid_body asks of the loads: far above
+/// rounding in the sums, far below any load a user means to apply.
+constexpr double kBalanceTolerance = 1e-8;
+
+/// constraints: rigid_body. Refuses loads that are not balanced (every stage's loads at its
+/// end), then pins the body in every loading.
+void pin_rigid_body(Problem& p) {
+  const Scene& s = p.scene;
+  std::vector<Loading*> loadings = {&p.loading};
+  for (auto& st : p.stages) loadings.push_back(&st.loading);
+  const int d = s.dim;
+  for (std::size_t k = 0; k < loadings.size(); ++k) {
+    const LoadResultant r = load_resultant(p.cloud, loadings[k]->force);
+    if (r.balanced(kBalanceTolerance)) continue;
+    auto list = [](const double* v, int n) {
+      std::string out = n > 1 ? "(" : "";
+      char buf[32];
+      for (int a = 0; a < n; ++a) {
+        std::snprintf(buf, sizeof buf, "%s%.6g", a ? ", " : "", v[a]);
+        out += buf;
+      }
+      return out + (n > 1 ? ")" : "");
+    };
+    std::string text = "the external loads";
+    if (k > 0) text += " of stage '" + p.stages[k - 1].name + "'";
+    text += " are not balanced: resultant force " + list(r.force.data(), d) + " N, moment " +
+            list(r.moment.data(), d == 2 ? 1 : 3) + " N m about the centroid, against " +
+            list(&r.force_scale, 1) + " N of nodal loads (rigid_body needs a body in equilibrium under its loads alone)";
+    // Layer loads act at the particles: on a jittered cloud their moments need not cancel.
+    if (p.model->trace().empty() && s.discretization.jitter > 0.0)
+      text += "; this formulation applies tractions at the jittered particles, whose moments need not cancel: "
+              "the consistent formulation applies them at the faces";
+    throw InputError(s.source + ": constraints: " + text);
+  }
+  try {
+    p.pins = rigid_body_pins(p.cloud);
+  } catch (const InputError& e) {
+    throw InputError(s.source + ": constraints: rigid_body: " + e.what());
+  }
+  for (Loading* load : loadings) {
+    const int support = load->add_support("rigid_body");
+    for (const auto& pin : p.pins)
+      for (const int c : pin.components) load->fix(static_cast<std::int64_t>(pin.particle) * d + c, 0.0, support);
+  }
 }
 
 }  // namespace
@@ -216,6 +268,7 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
     stage_faces.emplace_back();
     p.stages.push_back({st.name, st.steps, make_loading(s, boundary, p.cloud, stage_faces.back(), trace)});
   }
+  if (s.constraints == "rigid_body") pin_rigid_body(p);
   if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, p.model->G(), *trace);
   // The seed's collocation formulations keep collocated constraints (loading.hpp).
   const bool collocated = opt.formulation == Formulation::improved || opt.formulation == Formulation::strong;
@@ -246,19 +299,48 @@ double equivalent_strain(const double* H, int d) {
   return std::sqrt(2.0 / 3.0 * ee);
 }
 
+bool stress_field(const std::string& field) {
+  return field == "stress" || field == "von_mises" || field == "mean_stress";
+}
+
+std::vector<double> stress_gradient(const CorrespondenceModel& model, const std::vector<double>& sigma) {
+  std::vector<double> out(sigma.size() * model.G().dim());
+  model.G().apply(sigma.data(), 9, out.data());
+  return out;
+}
+
+void reconstruct_stress(const std::vector<double>& sigma, const std::vector<double>& grad_sigma,
+                        const PointCloud& cloud, std::size_t i, const double* y, double* out) {
+  const int d = cloud.dim;
+  for (int c = 0; c < 9; ++c) {
+    out[c] = sigma[i * 9 + c];
+    for (int b = 0; b < d; ++b) out[c] += grad_sigma[(i * 9 + c) * d + b] * (y[b] - cloud.x[i * d + b]);
+  }
+}
+
+double stress_probe_value(const ProbeSpec& spec, const double* sigma3) {
+  if (spec.field == "stress") return sigma3[axis_of(spec.component[0]) * 3 + axis_of(spec.component[1])];
+  if (spec.field == "mean_stress") return mean_stress(sigma3);
+  return von_mises(sigma3);
+}
+
 double probe_value(const ProbeSpec& spec, std::size_t i, const ProbeFields& f) {
   const int d = f.cloud.dim;
   if (spec.field == "displacement") return f.u[i * d + axis_of(spec.component[0])];
-  if (spec.field == "stress")
-    return f.sigma[i * 9 + axis_of(spec.component[0]) * 3 + axis_of(spec.component[1])];
-  if (spec.field == "mean_stress") return mean_stress(f.sigma.data() + i * 9);
+  if (stress_field(spec.field)) return stress_probe_value(spec, f.sigma.data() + i * 9);
   if (spec.field == "equivalent_strain") return equivalent_strain(f.H.data() + i * d * d, d);
   if (spec.field == "eq_plastic_strain") return f.plastic ? f.plastic->committed()[i].law.xi : 0.0;
-  return von_mises(f.sigma.data() + i * 9);
+  throw std::logic_error("probe_value: unknown field " + spec.field);
 }
 
 double point_probe_value(const BoundProbe& probe, const ProbeFields& f) {
   const std::size_t i = probe.particles.at(0);
+  if (probe.spec.reconstruct && stress_field(probe.spec.field)) {
+    if (!f.grad_sigma) throw std::logic_error("point_probe_value: a reconstructed stress probe needs grad sigma");
+    double s[9];
+    reconstruct_stress(f.sigma, *f.grad_sigma, f.cloud, i, probe.spec.point.data(), s);
+    return stress_probe_value(probe.spec, s);
+  }
   double v = probe_value(probe.spec, i, f);
   if (!probe.spec.reconstruct) return v;
   const int d = f.cloud.dim, a = axis_of(probe.spec.component[0]);

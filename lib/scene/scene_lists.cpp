@@ -34,9 +34,17 @@ Region read_region(Fields& f, const Scene& s) {
                            ", or xmin ... zmax)");
     return r;
   }
+  if (!n.IsMap()) f.fail("region", "must be a side name, all, {box: {min, max}} or {point: [...]}");
   Fields rf(n, f.key("region"), f.source());
-  Fields box = rf.map("box");
+  if (rf.has("box") == rf.has("point")) f.fail("region", "give exactly one of box or point");
   r.is_side = false;
+  if (rf.has("point")) {
+    r.is_point = true;
+    r.point = rf.vector("point", s.dim);
+    rf.finish();
+    return r;
+  }
+  Fields box = rf.map("box");
   r.min = box.vector("min", s.dim);
   r.max = box.vector("max", s.dim);
   box.finish();
@@ -53,6 +61,10 @@ std::vector<BoundarySpec> read_boundary(const std::vector<YAML::Node>& items, co
     Fields f(items[k], key + "[" + std::to_string(k) + "]", source);
     BoundarySpec b;
     b.where = detail::where(source, items[k]) + key + "[" + std::to_string(k) + "]";
+    b.key = key + "." + std::to_string(k);
+    for (std::size_t at = b.key.find('['); at != std::string::npos; at = b.key.find('['))
+      b.key.replace(at, 1, ".");
+    for (std::size_t at = b.key.find(']'); at != std::string::npos; at = b.key.find(']')) b.key.erase(at, 1);
     b.region = read_region(f, s);
     for (const auto& c : f.list("fix")) {
       const int a = c.IsScalar() ? axis_of(c.as<std::string>(), s.dim) : -1;
@@ -129,8 +141,9 @@ void read_probes(const std::vector<YAML::Node>& items, const std::string& source
       f.fail("field", s.thin_plate() ? "a thin_plate probe measures the deflection (field: deflection)"
                                      : "deflection is the field of a thin_plate (model.type: thin_plate)");
     p.reconstruct = f.boolean("reconstruct", p.reconstruct);
-    if (p.reconstruct && (p.is_line || p.field != "displacement"))
-      f.fail("reconstruct", "only point probes of the displacement are reconstructed");
+    if (p.reconstruct && (p.is_line || (p.field != "displacement" && p.field != "stress" &&
+                                         p.field != "von_mises" && p.field != "mean_stress")))
+      f.fail("reconstruct", "only point probes of the displacement, stress, von_mises or mean_stress are reconstructed");
     if (p.field == "deflection") {
       if (f.has("component")) f.fail("component", "a deflection probe has no component");
     } else if (p.field == "displacement") {

@@ -211,6 +211,28 @@ void read_solver(Fields f, Scene& s) {
   f.finish();
 }
 
+/// constraints: rigid_body holds a free body by pins the builder chooses; supports of its own
+/// would fight them, so it takes none.
+void read_constraints(Fields& top, Scene& s) {
+  s.constraints = top.text("constraints", "none");
+  if (s.constraints != "none" && s.constraints != "rigid_body") top.fail("constraints", "must be none or rigid_body");
+  if (s.constraints == "none") return;
+  if (s.thin_plate()) top.fail("constraints", "rigid_body is for correspondence models (a plate is held by its edges)");
+  auto constrains = [&](const BoundarySpec& b) {
+    for (int a = 0; a < s.dim; ++a)
+      if (b.fix[a] || b.displacement[a]) return true;
+    return false;
+  };
+  std::vector<const BoundarySpec*> all;
+  for (const auto& b : s.boundary) all.push_back(&b);
+  for (const auto& st : s.stages)
+    for (const auto& b : st.boundary) all.push_back(&b);
+  for (const BoundarySpec* b : all)
+    if (constrains(*b))
+      top.fail("constraints", "rigid_body is for a body held by no support, but " + b->key +
+                                  " fixes or prescribes displacements (remove one or the other)");
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& source,
@@ -239,6 +261,7 @@ Scene parse_scene(const std::string& text, const std::string& source,
   if (s.thin_plate()) detail::check_plate_scene(root, s);
   s.boundary = read_boundary(top.list("boundary"), source, s);
   read_stages(top.list("stages"), source, s);
+  read_constraints(top, s);
   if (top.has("solver")) read_solver(top.map("solver"), s);
   else top.mark("solver"), s.solver.type = s.plasticity ? "lbc" : "adr";
   if (top.has("output")) {

@@ -20,6 +20,14 @@ AdrRelaxation::AdrRelaxation(Model& model, const AdrOptions& opt, Progress* prog
   sample_.target = opt.tolerance;
 }
 
+void AdrRelaxation::add_reactions(const Loading& loading, double s, History& history) {
+  if (!loading.has_supports()) return;
+  const int dpp = model_.dofs_per_particle();
+  const std::size_t at = history.values.size();
+  history.values.resize(at + loading.support_names.size() * dpp);
+  loading.reactions(fint_.data(), s, dpp, history.values.data() + at);
+}
+
 bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double>& u,
                             SolveReport& rep, const Observer& observe,
                             const std::function<void()>& after_iteration) {
@@ -89,8 +97,10 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     r = residual();
     if (after_iteration) after_iteration();
     ++rep.iterations;
-    if (rep.iterations % opt_.history_every == 0)
+    if (rep.iterations % opt_.history_every == 0) {
       rep.history.add({double(rep.iterations), s, r, du, c});
+      add_reactions(loading, s, rep.history);
+    }
     observe(rep.iterations, s, u);
     if (progress_ && rep.iterations % 50 == 0) {
       sample_.iteration = rep.iterations;
@@ -107,6 +117,7 @@ SolveReport solve_adr(Model& model, const Loading& loading, const AdrOptions& op
                       std::vector<double>& u, Progress* progress, const Observer& observe) {
   SolveReport rep;
   rep.history.columns = {"iteration", "load_factor", "residual", "displacement_change", "damping"};
+  for (const auto& c : loading.reaction_columns(model.dofs_per_particle())) rep.history.columns.push_back(c);
   rep.history.reserve(opt.max_iterations / std::max<std::int64_t>(opt.history_every, 1) + 1);
   try {
     AdrRelaxation adr(model, opt, progress);

@@ -48,6 +48,14 @@ SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& 
   rep.history.columns = {"stage", "step", "load_factor", "iterations", "rounds", "newly_flagged",
                          "yielding", "plastic", "residual", "seconds"};
   u.resize(model.dofs(), 0.0);
+  // Reactions: one column per support of any stage (the scene's items are in every stage);
+  // a support absent from a stage reacts with 0 there.
+  const int d = model.dofs_per_particle();
+  Loading supports;
+  for (const auto& st : stages)
+    for (const auto& name : st.loading.support_names) supports.add_support(name);
+  for (const auto& c : supports.reaction_columns(d)) rep.history.columns.push_back(c);
+  std::vector<double> fint(supports.has_supports() ? model.dofs() : 0), stage_reactions;
   PlasticPoints* plastic = model.plastic();
   if (plastic)
     plastic->set_mode(opt.scheme == LoadPathScheme::lbc ? PlasticMode::lbc : PlasticMode::return_map);
@@ -63,6 +71,18 @@ SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& 
     r.seconds = wall_seconds() - t0;
     rep.history.add({double(r.stage), double(r.step), r.load_factor, double(r.iterations), double(r.rounds),
                      double(r.newly_flagged), double(r.yielding), double(r.plastic), r.residual, r.seconds});
+    if (supports.has_supports()) {
+      const Loading& loading = stages[r.stage - 1].loading;
+      model.follow_loads(loading, r.load_factor);
+      model.internal_force(u.data(), fint.data());
+      stage_reactions.resize(loading.support_names.size() * d);
+      loading.reactions(fint.data(), r.load_factor, d, stage_reactions.data());
+      const std::size_t at = rep.history.values.size();
+      rep.history.values.resize(at + supports.support_names.size() * d, 0.0);
+      for (std::size_t g = 0; g < loading.support_names.size(); ++g)
+        for (int a = 0; a < d; ++a)
+          rep.history.values[at + supports.add_support(loading.support_names[g]) * d + a] = stage_reactions[g * d + a];
+    }
     rep.residual = r.residual;
     if (after_step) after_step(r, u);
   };

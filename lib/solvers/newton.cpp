@@ -84,6 +84,9 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
   const auto to_u = [&] { std::copy_n(z.begin(), u.size(), u.begin()); };
   SolveReport rep;
   rep.history.columns = {"load_step", "load_factor", "newton_iterations", "residual"};
+  const int dpp = model.dofs_per_particle();
+  for (const auto& c : loading.reaction_columns(dpp)) rep.history.columns.push_back(c);
+  std::vector<double> fint(loading.has_supports() ? n : 0), reactions(loading.support_names.size() * dpp);
 
   SUNContext raw_ctx = nullptr;
   check(SUNContext_Create(nullptr, &raw_ctx), "SUNContext_Create");
@@ -146,6 +149,12 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
     rep.residual = load > 0.0 ? norm(R) / load : norm(R);
     R.resize(n);
     rep.history.add({double(step), data.s, double(iterations), rep.residual});
+    if (loading.has_supports()) {
+      model.follow_loads(loading, data.s);
+      model.internal_force(u.data(), fint.data());
+      loading.reactions(fint.data(), data.s, dpp, reactions.data());
+      rep.history.values.insert(rep.history.values.end(), reactions.begin(), reactions.end());
+    }
     if (progress) {
       sample.iteration = rep.iterations, sample.load_step = step, sample.residual = rep.residual;
       progress->update(sample);

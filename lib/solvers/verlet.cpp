@@ -33,6 +33,8 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   std::vector<double> a(n), fint(n), u_old(n), last_good(u);
   rep.history.columns = {"step", "time", "kinetic_energy", "strain_energy", "external_work",
                          "total_energy"};
+  const int dpp = model.dofs_per_particle();
+  for (const auto& c : loading.reaction_columns(dpp)) rep.history.columns.push_back(c);
   rep.history.reserve(opt.steps / std::max<std::int64_t>(opt.history_every, 1) + 2);
   auto factor = [&](double t) { return opt.ramp_time > 0.0 ? std::min(1.0, t / opt.ramp_time) : 1.0; };
   double work = 0.0;  // external work, trapezoidal in time
@@ -58,6 +60,12 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     })[0];
     const double strain = model.energy(u.data());
     rep.history.add({double(step), t, kin, strain, work, kin + strain - work});
+    if (loading.has_supports()) {
+      // fint is the force at this state (accelerate ran on it): the supports' static reaction.
+      const std::size_t at = rep.history.values.size();
+      rep.history.values.resize(at + loading.support_names.size() * dpp);
+      loading.reactions(fint.data(), factor(t), dpp, rep.history.values.data() + at);
+    }
   };
   double t = 0.0;
   loading.impose(factor(t), u.data());

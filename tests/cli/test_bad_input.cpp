@@ -336,7 +336,9 @@ TEST_CASE("a valid run writes its outputs and leaves no temporary file", "[cli]"
   const std::string summary = slurp(out / "summary.json");
   CHECK(summary.find("\"converged\": true") != std::string::npos);
   CHECK(summary.find("\"top_uy\"") != std::string::npos);
-  CHECK(slurp(out / "history.csv").rfind("iteration,load_factor,residual,displacement_change,damping\n", 0) == 0);
+  // The ADR columns, then the reaction of the one support (the fixed bottom).
+  CHECK(slurp(out / "history.csv").rfind("iteration,load_factor,residual,displacement_change,damping,"
+                                         "boundary.0.Rx,boundary.0.Ry\n", 0) == 0);
 }
 
 // Gaps found by these tests and since fixed.

@@ -47,6 +47,9 @@ TEST_CASE("a plastic scene writes its step table, probe histories and plastic fi
                  "--set output.vtk_every=5 --set material.h=50");
   const fs::path out = d / "out";
   CHECK(lines(out / "load_steps.csv") == 1 + 10);
+  // Each step's reactions: the scene's supports and the compression stage's own.
+  CHECK(slurp(out / "load_steps.csv").find(",seconds,boundary.0.Rx,boundary.0.Ry,boundary.1.Rx,boundary.1.Ry,"
+                                           "stages.1.boundary.1.Rx,stages.1.boundary.1.Ry\n") != std::string::npos);
   CHECK(lines(out / "probe_center_von_mises_history.csv") == 1 + 10);
   CHECK(lines(out / "probe_center_eq_plastic_strain_history.csv") == 1 + 10);
   const std::string summary = slurp(out / "summary.json");
@@ -54,6 +57,7 @@ TEST_CASE("a plastic scene writes its step table, probe histories and plastic fi
   CHECK(summary.find("\"particles_yielded\": 400") != std::string::npos);
   CHECK(summary.find("\"probe_histories_relative_max\"") != std::string::npos);
   CHECK(summary.find("\"newton_converged\": true") != std::string::npos);
+  CHECK(summary.find("\"equilibrium\"") != std::string::npos);
   // The VTK point data of a plastic scene, and the same as CSV (snapshots after steps 5, 10).
   const std::string vtu = slurp(out / "biaxial_compression_000000.vtu");
   for (const char* field : {"eq_plastic_strain", "plastic_strain", "yielded", "mean_stress", "von_mises"}) {

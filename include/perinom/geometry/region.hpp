@@ -1,5 +1,6 @@
 #pragma once
-/// @file Regions that select particles: a side of the box, or a box selector.
+/// @file Regions that select particles: a side of the box, a box selector, or the particle
+/// nearest a point.
 #include <array>
 #include <string>
 #include <vector>
@@ -20,14 +21,18 @@ struct Side {
 /// Parses a side name for a box of dimension dim; returns false if the name is unknown.
 bool parse_side(const std::string& name, int dim, Side& side);
 
-/// A region: either a side of the geometry's box, or an axis-aligned selector box.
+/// A region: a side of the geometry's box, an axis-aligned selector box, or (is_point) the
+/// one particle nearest a point, which stays the same material point when dx changes.
 struct Region {
   bool is_side = true;
+  bool is_point = false;
   Side side;
   std::array<double, 3> min{0, 0, 0}, max{0, 0, 0};  ///< selector box (m), inclusive
+  std::array<double, 3> point{0, 0, 0};              ///< is_point: the point (m)
 };
 
-/// The particles a region selects. A side selects the layer within one spacing of the face.
+/// The particles a region selects. A side selects the layer within one spacing of the face;
+/// a point the nearest particle (reference positions; the lowest index on a tie).
 std::vector<ParticleId> select(const Region& region, const BoxGeometry& box,
                                const PointCloud& cloud);
 

@@ -2,6 +2,7 @@
 /// @file Boundary conditions reduced to what a solver applies: fixed degrees of freedom
 /// with prescribed values, and an external force vector, both at full load.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,11 @@ struct Loading {
   /// The part of `force` (and of force0) that pressures make, per dof, in the reference
   /// configuration: a model with follower pressures turns it with the surface (empty: none).
   std::vector<double> pressure_force, pressure_force0;
+  /// Supports, for reactions: the support each constraint belongs to (an index into
+  /// support_names, parallel to `fixed`; -1 for none), e.g. the boundary item that set it.
+  /// Empty when the loading records none.
+  std::vector<int> support;
+  std::vector<std::string> support_names;
 
   /// The external force on dof k at factor s.
   double force_at(double s, std::size_t k) const {
@@ -63,8 +69,23 @@ struct Loading {
   /// the first stage). Values and forces of this stage then act as increments and totals.
   void begin_stage(const Loading* previous, const double* u);
 
-  /// Adds a constraint, replacing an earlier one on the same dof.
-  void fix(std::int64_t dof, double v);
+  /// Adds a constraint, replacing an earlier one on the same dof (and its support).
+  void fix(std::int64_t dof, double v, int support_index = -1);
+  /// Registers a support by name (returns its index for fix), or finds it if known.
+  int add_support(const std::string& name);
+  bool has_supports() const { return !support_names.empty(); }
+  /// The reaction of every support at factor s, from the internal force fint at the state:
+  /// R[g * dpp + a] = sum of fint - f_ext(s) over the constrained dofs of support g with
+  /// component a (dof % dpp), the force (N) the support exerts on the body (Galerkin
+  /// face-located supports: the sum of their multipliers, the reaction spread over the dofs
+  /// their constraints read, which the dofs' own fint - f_ext do not see); dpp is the model's
+  /// dofs per particle. At equilibrium, sum_g R_g + the sum of the applied loads = 0 up to
+  /// the residual on the free dofs (for models whose internal forces sum to zero).
+  /// R holds support_names.size() * dpp values; nothing is allocated.
+  void reactions(const double* fint, double s, int dpp, double* R) const;
+  /// Column names in the order of reactions(): "NAME.Rx", "NAME.Ry" (, "NAME.Rz") for dpp 2
+  /// or 3, "NAME.R" for one dof per particle (a plate's transverse force).
+  std::vector<std::string> reaction_columns(int dpp) const;
   /// Sets u at the constrained dofs. Face-located constraints use the current neighbour
   /// values (one Gauss-Seidel sweep; the explicit solvers call it every iteration, so the
   /// constraints converge with the solve).
@@ -86,7 +107,9 @@ struct Loading {
   bool galerkin() const { return coupled_constraints() && !collocated; }
 
  private:
-  mutable std::vector<double> lambda_, sum_;  // scratch of reduce
+  /// lambda_ from (E_FF)^T lambda = -r_F, r_at(dof) giving r (a force, f_ext - f_int).
+  void solve_multipliers(const std::function<double(std::int64_t)>& r_at) const;
+  mutable std::vector<double> lambda_, sum_;  // scratch of reduce and reactions
 };
 
 /// One stage of a load path: its loading (values as increments over the stage, forces as

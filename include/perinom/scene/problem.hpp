@@ -7,6 +7,7 @@
 #include "perinom/core/timer.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/models/loading.hpp"
+#include "perinom/models/rigid_body.hpp"
 #include "perinom/models/thin_plate.hpp"
 #include "perinom/scene/scene.hpp"
 
@@ -32,6 +33,8 @@ struct Problem {
   Loading loading;                 ///< the scene's `boundary` at solver.load_steps (single-stage solvers)
   std::vector<LoadStage> stages;   ///< load-path scenes (Scene::load_path): one per stage
   std::vector<BoundProbe> probes;
+  /// constraints: rigid_body: the pins added to every loading (support "rigid_body").
+  std::vector<RigidBodyPin> pins;
 
   TangentModel& physics() { return plate ? static_cast<TangentModel&>(*plate) : *model; }
   const TangentModel& physics() const { return plate ? static_cast<const TangentModel&>(*plate) : *model; }
@@ -49,8 +52,8 @@ Families scene_families(const Scene& scene, const PointCloud& cloud);
 Problem build_plate_problem(const Scene& scene, PhaseTimer* timer);
 
 /// Builds the problem (lattice, families, operators, loading, probes). Phases are timed
-/// in `timer` when given. Throws InputError for a region that selects no particle or a
-/// singular shape tensor.
+/// in `timer` when given. Throws InputError for a region that selects no particle, a
+/// singular shape tensor, or (constraints: rigid_body) loads that are not balanced.
 Problem build_problem(const Scene& scene, PhaseTimer* timer = nullptr);
 
 /// The fields probes read: displacement u (N x d), 3 x 3 stresses sigma (N x 9), the
@@ -61,7 +64,25 @@ struct ProbeFields {
   const std::vector<double>& sigma;
   const std::vector<double>& H;
   const PlasticPoints* plastic = nullptr;
+  /// grad sigma (N x 9 x d, stress_gradient), needed by reconstructed stress probes only.
+  const std::vector<double>* grad_sigma = nullptr;
 };
+
+/// True for the fields computed from the stress alone (stress, von_mises, mean_stress): those
+/// a point probe reconstructs from the stress and its gradient.
+bool stress_field(const std::string& field);
+
+/// The nonlocal gradient of the 3 x 3 stresses sigma (N x 9) by the model's operator G:
+/// out[(i*9 + c)*d + b] = d sigma_c / d x_b at particle i (Pa/m). Exact for linear stress
+/// fields when G is exact for quadratic displacements (operator order 2, classical).
+std::vector<double> stress_gradient(const CorrespondenceModel& model, const std::vector<double>& sigma);
+
+/// sigma(y) = sigma_i + (grad sigma)_i (y - x_i) (9 values) at the point y (d values).
+void reconstruct_stress(const std::vector<double>& sigma, const std::vector<double>& grad_sigma,
+                        const PointCloud& cloud, std::size_t i, const double* y, double* out);
+
+/// The value of a stress field (stress_field(spec.field)) of a 3 x 3 stress.
+double stress_probe_value(const ProbeSpec& spec, const double* sigma3);
 
 /// Mean stress tr(sigma) / 3 of a 3 x 3 stress (Pa, tension positive), and the equivalent
 /// strain sqrt(2/3 e : e) of grad u (d x d; e the deviator of the 3 x 3 small strain, plane
@@ -73,7 +94,9 @@ double equivalent_strain(const double* H, int dim);
 double probe_value(const ProbeSpec& spec, std::size_t i, const ProbeFields& f);
 
 /// A point probe's value: at its nearest particle, or, with `reconstruct`, at the probe's
-/// point through that particle's first-order reconstruction u_i + (grad u)_i (x - x_i).
+/// point through that particle's first-order reconstruction: u_i + (grad u)_i (x - x_i) for
+/// the displacement; for a stress field, the field of sigma_i + (grad sigma)_i (x - x_i)
+/// (needs f.grad_sigma; throws std::logic_error without it).
 double point_probe_value(const BoundProbe& probe, const ProbeFields& f);
 
 }  // namespace perinom

@@ -40,6 +40,7 @@ struct ModelSpec {
 /// fix (at zero, or at a prescribed ramped displacement), a traction vector, a pressure.
 struct BoundarySpec {
   std::string where;  ///< "file:line: boundary[k]" for messages
+  std::string key;    ///< "boundary.k" or "stages.s.boundary.k": names its reaction
   Region region;
   std::array<bool, 3> fix{false, false, false};
   std::array<std::optional<double>, 3> displacement;  ///< m, at full load
@@ -106,6 +107,9 @@ struct Scene {
   ModelSpec model;
   std::vector<BoundarySpec> boundary;
   std::vector<StageSpec> stages;  ///< empty: one stage of solver.load_steps steps
+  /// none | rigid_body: pins chosen to remove the rigid modes of a body loaded by balanced
+  /// tractions only (rigid_body_pins)
+  std::string constraints = "none";
   SolverSpec solver;
   OutputSpec output;
   std::vector<ProbeSpec> probes;

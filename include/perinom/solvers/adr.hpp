@@ -47,6 +47,8 @@ class AdrRelaxation {
   void set_load_step(int step, int steps) { sample_.load_step = step, sample_.load_steps = steps; }
 
  private:
+  /// Appends the supports' reactions at the last force evaluation to the history's last row.
+  void add_reactions(const Loading& loading, double s, History& history);
   Model& model_;
   AdrOptions opt_;
   Progress* progress_;
@@ -58,7 +60,8 @@ class AdrRelaxation {
 /// s = 1/n, 2/n, ..., 1. Fictitious density lambda_ii = 1/4 sum_j |K_ij| (dt = 1) from the
 /// model's exact row sums; adaptive damping from the local Rayleigh quotient.
 /// The load norm is the larger of |f_ext| and the norm of the reactions at the constrained
-/// dofs, so displacement-driven scenes are measured too.
+/// dofs, so displacement-driven scenes are measured too. When the loading has supports, each
+/// history row ends with their reactions (Loading::reaction_columns, Loading::reactions).
 /// On NaN or Inf it stops with report.failure set and converged false, leaving in u the
 /// last state (checked every 100 iterations) whose force was finite.
 SolveReport solve_adr(Model& model, const Loading& loading, const AdrOptions& options,

@@ -1,0 +1,25 @@
+#pragma once
+// What `perinom run` says about the supports: the pins of constraints: rigid_body, each
+// support's reaction force and the equilibrium error of the final state.
+#include <string>
+#include <vector>
+
+#include "perinom/io/json_writer.hpp"
+#include "perinom/scene/problem.hpp"
+
+namespace perinom::cli {
+
+/// Prints the rigid_body pins (particle, position, held components) and returns them for
+/// summary.json: [{"particle": i, "position": [...], "components": ["x", ...]}, ...].
+io::Json pin_results(const Problem& p);
+
+/// The reactions at u under `loading` at factor s (Loading::reactions), printed with the
+/// equilibrium error |sum of applied loads + sum of reactions| / |sum of applied loads| (when
+/// the loads balance or there are none: over sum_k |f_k|, or the largest reaction). Sets
+/// summary["reactions"] (NAME: [R per component], N) and summary["equilibrium"] (applied,
+/// reactions: the sums; error; relative_to: which denominator).
+/// A dynamic run (Verlet) gets the reactions only: inertia balances its loads too.
+void add_reaction_results(Problem& p, const Loading& loading, double s, const std::vector<double>& u,
+                          bool dynamic, io::Json& summary);
+
+}  // namespace perinom::cli

@@ -1,0 +1,39 @@
+#pragma once
+/// @file Supports for a free body: the resultant of its loads, and the fewest pins that stop
+/// its rigid motion without holding it (a body loaded by balanced forces only).
+#include <array>
+#include <vector>
+
+#include "perinom/core/types.hpp"
+#include "perinom/geometry/point_cloud.hpp"
+
+namespace perinom {
+
+/// The resultant of nodal forces f (N x d, N) about the cloud's volume centroid `about`:
+/// force (N, d values) and moment (N m; one value in 2-D, three in 3-D). `force_scale` is
+/// sum_i |f_i| (N) and `length` the diagonal of the particles' bounding box (m), the scales
+/// a balance check compares with.
+struct LoadResultant {
+  std::array<double, 3> force{0, 0, 0}, moment{0, 0, 0}, about{0, 0, 0};
+  double force_scale = 0.0;
+  double length = 0.0;
+  /// |force| and |moment| / length within `tolerance` * force_scale (true when unloaded).
+  bool balanced(double tolerance) const;
+};
+LoadResultant load_resultant(const PointCloud& cloud, const std::vector<double>& force);
+
+/// One pinned particle and the components held (0 = x, 1 = y, 2 = z).
+struct RigidBodyPin {
+  ParticleId particle = 0;
+  std::vector<int> components;
+};
+
+/// Pins that remove the d (d + 1) / 2 rigid modes and nothing more: the particle A nearest
+/// the volume centroid held in every component; B, the particle nearest the far end of the
+/// body's longest axis e1 through A, held across e1; in 3-D also C, nearest the far end of
+/// the second-longest axis e2 through A, held along e3 = e1 x e2. So A stops translation, B
+/// the rotations that move it across e1, C the rotation about e1. Throws InputError when the
+/// pins do not determine the rigid modes (a body too small to hold them apart).
+std::vector<RigidBodyPin> rigid_body_pins(const PointCloud& cloud);
+
+}  // namespace perinom
