@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <unordered_map>
 
 namespace perinom {
@@ -26,19 +25,6 @@ int Loading::add_support(const std::string& name) {
     if (support_names[g] == name) return static_cast<int>(g);
   support_names.push_back(name);
   return static_cast<int>(support_names.size()) - 1;
-}
-
-void Loading::reactions(const double* fint, double s, int dpp, double* R) const {
-  std::fill(R, R + support_names.size() * dpp, 0.0);
-  const auto residual = [&](std::int64_t dof) { return (has_force() ? force_at(s, dof) : 0.0) - fint[dof]; };
-  // Galerkin supports react through their multipliers, spread over the dofs a constraint
-  // reads; each row of E sums to one, so a constraint's total is its multiplier.
-  if (galerkin()) solve_multipliers(residual);
-  for (std::size_t k = 0; k < support.size(); ++k) {
-    if (support[k] < 0) continue;
-    const std::int64_t dof = fixed[k];
-    R[support[k] * dpp + dof % dpp] += galerkin() ? lambda_[k] : -residual(dof);
-  }
 }
 
 std::vector<std::string> Loading::reaction_columns(int dpp) const {
@@ -108,7 +94,8 @@ void Loading::index_couplings() {
   sum_.assign(fixed.size(), 0.0);
 }
 
-void Loading::solve_multipliers(const std::function<double(std::int64_t)>& r_at) const {
+template <class RAt>
+void Loading::solve_multipliers(const RAt& r_at) const {
   const std::size_t m = fixed.size();
   // (E_FF)^T lambda = -r_F by Jacobi sweeps: E_FF is its diagonal 1/scale plus the small
   // couplings among constrained dofs of one face (a reconstruction reads its neighbours on the
@@ -127,6 +114,19 @@ void Loading::solve_multipliers(const std::function<double(std::int64_t)>& r_at)
       lambda_[l] = next;
     }
     if (change <= 1e-15 * size) break;
+  }
+}
+
+void Loading::reactions(const double* fint, double s, int dpp, double* R) const {
+  std::fill(R, R + support_names.size() * dpp, 0.0);
+  const auto residual = [&](std::int64_t dof) { return (has_force() ? force_at(s, dof) : 0.0) - fint[dof]; };
+  // Galerkin supports react through their multipliers, spread over the dofs a constraint
+  // reads; each row of E sums to one, so a constraint's total is its multiplier.
+  if (galerkin()) solve_multipliers(residual);
+  for (std::size_t k = 0; k < support.size(); ++k) {
+    if (support[k] < 0) continue;
+    const std::int64_t dof = fixed[k];
+    R[support[k] * dpp + dof % dpp] += galerkin() ? lambda_[k] : -residual(dof);
   }
 }
 

@@ -2,7 +2,6 @@
 /// @file Boundary conditions reduced to what a solver applies: fixed degrees of freedom
 /// with prescribed values, and an external force vector, both at full load.
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -108,7 +107,10 @@ struct Loading {
 
  private:
   /// lambda_ from (E_FF)^T lambda = -r_F, r_at(dof) giving r (a force, f_ext - f_int).
-  void solve_multipliers(const std::function<double(std::int64_t)>& r_at) const;
+  /// (A template, defined and instantiated in loading.cpp only: a std::function would
+  /// allocate for the capturing lambdas of the hot paths.)
+  template <class RAt>
+  void solve_multipliers(const RAt& r_at) const;
   mutable std::vector<double> lambda_, sum_;  // scratch of reduce and reactions
 };
 
