@@ -74,6 +74,7 @@ struct SolverSpec {
   std::string check = "none"; ///< "newton": also solve with Newton and report the difference
   double yield_tolerance = 1e-6;  ///< LBC: relative violation of the yield condition that flags
   int max_rounds = 1000;          ///< LBC: balance-correction rounds per load step
+  bool allow_unstable = false;    ///< Verlet: run the improved or strong formulation anyway
 };
 
 struct ProbeSpec {
