@@ -170,6 +170,11 @@ int run(const Options& opt) {
                     ? "pressures follow the deformed surface; traction vectors stay dead loads (reference area)"
                     : "tractions and pressures stay nominal (model.follower_pressure: false)");
   std::fflush(stdout);
+  if (scene.solver.type == "verlet" && scene.solver.allow_unstable && p.model &&
+      (p.model->formulation() == Formulation::improved || p.model->formulation() == Formulation::strong))
+    std::fprintf(stderr, "perinom: warning: model.formulation %s in explicit dynamics (solver.allow_unstable): "
+                 "non-symmetric, its energy may grow without bound; the energy-balance guard %s\n",
+                 scene.model.formulation.c_str(), scene.solver.energy_check ? "stops the run if it does" : "is off");
 
   io::PvdSeries series(dir, scene.name);
   std::vector<double> u(p.physics().dofs(), 0.0), v;
@@ -205,6 +210,8 @@ int run(const Options& opt) {
       o.steps = scene.solver.steps;
       o.ramp_time = scene.solver.ramp_time;
       o.history_every = scene.solver.history_every;
+      o.energy_check = scene.solver.energy_check;
+      o.energy_tolerance = scene.solver.energy_tolerance;
       rep = solve_verlet(p.physics(), p.loading, o, u, v, &progress, observe);
     }
   }

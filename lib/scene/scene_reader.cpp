@@ -208,6 +208,9 @@ void read_solver(Fields f, Scene& s) {
   v.max_rounds = f.small_integer("max_rounds", v.max_rounds);
   if (v.max_rounds < 1) f.fail("max_rounds", "must be at least 1");
   if (newton && v.max_iterations > 1000000000) f.fail("max_iterations", "is out of range");
+  v.energy_check = f.boolean("energy_check", v.energy_check);
+  v.energy_tolerance = f.number("energy_tolerance", v.energy_tolerance);
+  if (!(v.energy_tolerance > 0.0)) f.fail("energy_tolerance", "must be positive");
   v.allow_unstable = f.boolean("allow_unstable", v.allow_unstable);
   f.finish();
 }

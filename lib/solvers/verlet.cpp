@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "perinom/core/error.hpp"
 #include "perinom/solvers/vector_ops.hpp"
@@ -31,6 +32,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   for (auto& m : inv_mass) m = 1.0 / m;
   const double* fext = loading.force.empty() ? nullptr : loading.force.data();
   std::vector<double> a(n), fint(n), u_old(n), last_good(u);
+  std::vector<double> fint_fixed(loading.fixed.size());  // f_int at the constrained dofs, before the step
   rep.history.columns = {"step", "time", "kinetic_energy", "strain_energy", "external_work",
                          "total_energy"};
   rep.history.reserve(opt.steps / std::max<std::int64_t>(opt.history_every, 1) + 2);
@@ -50,12 +52,29 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
                        std::to_string(rep.iterations) + " (last finite state kept)");
     }
   };
+  // The energy balance: E - E0 - W against the largest energy and work seen so far.
+  double e0 = 0.0, e_max = 0.0, w_max = 0.0;
   auto record = [&](std::int64_t step, double t) {
     const double kin = parallel_sums<1>(n, [&](std::size_t k, double* acc) {
       acc[0] += 0.5 * v[k] * v[k] / inv_mass[k];
     })[0];
     const double strain = model.energy(u.data());
     rep.history.add({double(step), t, kin, strain, work, kin + strain - work});
+    if (step == 0) e0 = kin + strain;
+    e_max = std::max(e_max, kin + strain), w_max = std::max(w_max, std::abs(work));
+    const double defect = std::abs(kin + strain - e0 - work), bound = opt.energy_tolerance * std::max(e_max, w_max) + opt.energy_floor;
+    if (opt.energy_check && (defect > bound || !std::isfinite(defect))) {
+      u = last_good;
+      char what[640];
+      std::snprintf(what, sizeof what,
+                    "Verlet: the energy balance failed at step %lld (t = %.4e s): kinetic + strain energy "
+                    "%.4e J against %.4e J initial plus %.4e J of external work, off by %.3e J, more than %g times "
+                    "the largest energy or work so far (the discrete problem gains energy: an unstable formulation "
+                    "or time step; solver.energy_check: false turns this guard off; last state kept from a "
+                    "multiple of 100 steps)",
+                    static_cast<long long>(step), t, kin + strain, e0, work, defect, opt.energy_tolerance);
+      throw SolveError(what);
+    }
   };
   double t = 0.0;
   loading.impose(factor(t), u.data());
@@ -74,7 +93,15 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     const double s_mid = 0.5 * (factor(t) + factor(t - dt));
     if (fext)
       work += s_mid * parallel_sums<1>(n, [&](std::size_t k, double* acc) { acc[0] += fext[k] * (u[k] - u_old[k]); })[0];
+    for (std::size_t k = 0; k < loading.fixed.size(); ++k) fint_fixed[k] = fint[loading.fixed[k]];
     accelerate(t);
+    // The constraints' work: the load on a constrained dof is replaced by its reaction, so
+    // the work there is f_int . du (trapezoidal), zero for supports that do not move.
+    for (std::size_t k = 0; k < loading.fixed.size(); ++k) {
+      const std::int64_t dof = loading.fixed[k];
+      const double du = u[dof] - u_old[dof];
+      if (du != 0.0) work += (0.5 * (fint_fixed[k] + fint[dof]) - (fext ? s_mid * fext[dof] : 0.0)) * du;
+    }
     parallel_for(n, [&](std::size_t k) { v[k] += 0.5 * dt * a[k]; });
     loading.zero_fixed(v.data());
     rep.iterations = step;

@@ -570,3 +570,8 @@ TEST_CASE("Verlet refuses the improved and strong formulations by model.formulat
     CHECK(o.exit_code == 0);
   }
 }
+
+TEST_CASE("a non-positive energy tolerance is named", "[cli]") {
+  const std::string s = with(tiny_scene, "  type: adr\n", "  type: verlet\n  energy_tolerance: 0\n");
+  require_rejected(s, {at_line(s, "energy_tolerance:", "solver.energy_tolerance: must be positive")});
+}
