@@ -21,6 +21,7 @@
 #include "load_path_run.hpp"
 #include "plate_output.hpp"
 #include "snapshot.hpp"
+#include "stability_check.hpp"
 #include "terminal_progress.hpp"
 
 namespace perinom::cli {
@@ -170,8 +171,9 @@ int run(const Options& opt) {
                     ? "pressures follow the deformed surface; traction vectors stay dead loads (reference area)"
                     : "tractions and pressures stay nominal (model.follower_pressure: false)");
   std::fflush(stdout);
-  if (scene.solver.type == "verlet" && scene.solver.allow_unstable && p.model &&
-      (p.model->formulation() == Formulation::improved || p.model->formulation() == Formulation::strong))
+  if (scene.solver.type != "verlet") warn_if_unstable(p);
+  else if (scene.solver.allow_unstable && p.model &&
+           (p.model->formulation() == Formulation::improved || p.model->formulation() == Formulation::strong))
     std::fprintf(stderr, "perinom: warning: model.formulation %s in explicit dynamics (solver.allow_unstable): "
                  "non-symmetric, its energy may grow without bound; the energy-balance guard %s\n",
                  scene.model.formulation.c_str(), scene.solver.energy_check ? "stops the run if it does" : "is off");
