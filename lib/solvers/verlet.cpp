@@ -62,7 +62,8 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     rep.history.add({double(step), t, kin, strain, work, kin + strain - work});
     if (step == 0) e0 = kin + strain;
     e_max = std::max(e_max, kin + strain), w_max = std::max(w_max, std::abs(work));
-    const double defect = std::abs(kin + strain - e0 - work), bound = opt.energy_tolerance * std::max(e_max, w_max) + opt.energy_floor;
+    const double defect = std::abs(kin + strain - e0 - work);
+    const double bound = opt.energy_tolerance * std::max(e_max, w_max) + opt.energy_floor;
     if (opt.energy_check && (defect > bound || !std::isfinite(defect))) {
       u = last_good;
       char what[640];
