@@ -71,8 +71,8 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
                     "Verlet: the energy balance failed at step %lld (t = %.4e s): kinetic + strain energy "
                     "%.4e J against %.4e J initial plus %.4e J of external work, off by %.3e J, more than %g times "
                     "the largest energy or work so far (the discrete problem gains energy: an unstable formulation "
-                    "or time step; solver.energy_check: false turns this guard off; last state kept from a "
-                    "multiple of 100 steps)",
+                    "or time step; solver.energy_check: false turns this guard off; the state kept is that of the last "
+                    "earlier step that is a multiple of 100)",
                     static_cast<long long>(step), t, kin + strain, e0, work, defect, opt.energy_tolerance);
       throw SolveError(what);
     }
@@ -107,8 +107,9 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     loading.zero_fixed(v.data());
     rep.iterations = step;
     rep.end_time = t;
-    if (step % 100 == 0) last_good = u;
+    // Recorded first, so that a state the energy balance rejects is never kept as good.
     if (step % opt.history_every == 0) record(step, t);
+    if (step % 100 == 0) last_good = u;
     observe(step, t, u);
     if (progress && step % 50 == 0) {
       sample.iteration = step;

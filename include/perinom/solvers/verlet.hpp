@@ -36,8 +36,8 @@ double stable_time_step(const Model& model);
 /// reactions f_int times the constrained dofs' motion, zero for fixed supports), each
 /// trapezoidal in time, so kinetic + strain - external work stays at its initial value.
 /// On NaN or Inf, or when the energy balance fails (VerletOptions::energy_check), it stops
-/// with report.failure set and converged false, leaving in u the last state (kept every 100
-/// steps) whose force was finite.
+/// with report.failure set and converged false, leaving in u the last state kept (every 100
+/// steps, after that step's energy check) whose force was finite.
 SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptions& options,
                          std::vector<double>& u, std::vector<double>& v,
                          Progress* progress = nullptr, const Observer& observe = {});
