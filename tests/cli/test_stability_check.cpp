@@ -8,17 +8,35 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 namespace fs = std::filesystem;
 
 namespace {
 
+/// A fresh folder of its own under the temp folder (concurrent test runs on one machine
+/// must not share one), removed with its contents when the last Outcome holding it goes.
+struct Scratch {
+  fs::path path;
+  explicit Scratch(const std::string& name) {
+    std::string pattern = (fs::temp_directory_path() / (name + "_XXXXXX")).string();
+    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp " + pattern);
+    path = pattern;
+  }
+  ~Scratch() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+
 struct Outcome {
   int exit_code = -1;
   std::string out, err;
   fs::path dir;
+  std::shared_ptr<Scratch> scratch;
 };
 
 std::string slurp(const fs::path& p) {
@@ -28,12 +46,11 @@ std::string slurp(const fs::path& p) {
   return s.str();
 }
 
-/// Runs `perinom COMMAND examples/vibrating_bar.yaml --set ...` in a fresh folder under
-/// the temp folder (kept for the test's reads; named by `name`).
+/// Runs `perinom COMMAND examples/vibrating_bar.yaml --set ...` in a fresh folder (kept
+/// while the Outcome lives, for the test's reads).
 Outcome bar(const std::string& name, const std::string& command, const std::string& sets) {
-  const fs::path d = fs::temp_directory_path() / ("perinom_stability_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
+  auto scratch = std::make_shared<Scratch>("perinom_stability_" + name);
+  const fs::path d = scratch->path;
   const std::string cmd = "cd '" + d.string() + "' && '" PERINOM_EXE "' " + command + " '" PERINOM_SOURCE_DIR
                           "/examples/vibrating_bar.yaml' " + sets + " >out.txt 2>err.txt";
   const int status = std::system(cmd.c_str());
@@ -42,6 +59,7 @@ Outcome bar(const std::string& name, const std::string& command, const std::stri
   o.out = slurp(d / "out.txt");
   o.err = slurp(d / "err.txt");
   o.dir = d;
+  o.scratch = scratch;
   return o;
 }
 
