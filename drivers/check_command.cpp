@@ -8,6 +8,7 @@
 #include "perinom/core/error.hpp"
 #include "perinom/scene/problem.hpp"
 #include "perinom/solvers/jacobian.hpp"
+#include "stability_check.hpp"
 
 namespace perinom::cli {
 namespace {
@@ -109,6 +110,10 @@ int check(const Options& opt) {
     std::printf("  probe %-20s %s, %zu particle(s)\n", probe.spec.name.c_str(),
                 probe.spec.is_line ? "line" : "point", probe.particles.size());
   std::printf("  setup time      %.3f s\n", timer.total());
+  if (opt.spectrum) {
+    std::fflush(stdout);
+    print_spectrum(stiffness_spectrum(p.physics(), checked_loading(p)));
+  }
   return 0;
 }
 

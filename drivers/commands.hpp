@@ -16,6 +16,7 @@ struct Options {
   bool single_precision = false;  ///< G's weights stored as float
   int test = 2;                   ///< material-point: seed 000 Table 2 test
   int substeps = 1000;            ///< material-point: sub-steps of the reference
+  bool spectrum = false;          ///< check: also the stability check (eigenvalues of M^-1 K)
 };
 
 int run(const Options& opt);

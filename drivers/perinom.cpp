@@ -1,6 +1,6 @@
 // perinom: the command line program.
 //   perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N]
-//   perinom check SCENE [--set dotted.key=value]...
+//   perinom check SCENE [--set dotted.key=value]... [--spectrum]
 //   perinom bench force --dimension 3 --n N [--threads T]
 //   perinom material-point [--test 1..7] [--substeps S] [--out DIR]
 // Exit codes: 0 success, 1 the solve did not converge, 2 bad input, 3 the solve failed.
@@ -20,7 +20,7 @@ void usage() {
   std::fprintf(stderr,
                "usage:\n"
                "  perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N]\n"
-               "  perinom check SCENE [--set dotted.key=value]...\n"
+               "  perinom check SCENE [--set dotted.key=value]... [--spectrum]\n"
                "  perinom bench force --dimension 2|3 --n N [--threads T] [--stabilization C] [--storage auto|fused|assembled|matrix_free] [--single]\n"
                "  perinom material-point [--test 1..7] [--substeps S] [--out DIR]\n");
 }
@@ -68,6 +68,7 @@ int main(int argc, char** argv) {
       else if (a == "--test") opt.test = static_cast<int>(integer());
       else if (a == "--substeps") opt.substeps = static_cast<int>(integer());
       else if (a == "--single") opt.single_precision = true;
+      else if (a == "--spectrum") opt.spectrum = true;
       else if (a.rfind("--", 0) == 0) throw InputError("unknown option " + a);
       else opt.positional.push_back(a);
     }

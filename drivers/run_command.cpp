@@ -22,6 +22,7 @@
 #include "plate_output.hpp"
 #include "reactions_output.hpp"
 #include "snapshot.hpp"
+#include "stability_check.hpp"
 #include "terminal_progress.hpp"
 
 namespace perinom::cli {
@@ -172,6 +173,12 @@ int run(const Options& opt) {
                     : "tractions and pressures stay nominal (model.follower_pressure: false)");
   const Json pins = pin_results(p);
   std::fflush(stdout);
+  if (scene.solver.type != "verlet") warn_if_unstable(p);
+  else if (scene.solver.allow_unstable && p.model &&
+           (p.model->formulation() == Formulation::improved || p.model->formulation() == Formulation::strong))
+    std::fprintf(stderr, "perinom: warning: model.formulation %s in explicit dynamics (solver.allow_unstable): "
+                 "non-symmetric, its energy may grow without bound; the energy-balance guard %s\n",
+                 scene.model.formulation.c_str(), scene.solver.energy_check ? "stops the run if it does" : "is off");
 
   io::PvdSeries series(dir, scene.name);
   std::vector<double> u(p.physics().dofs(), 0.0), v;
@@ -207,6 +214,8 @@ int run(const Options& opt) {
       o.steps = scene.solver.steps;
       o.ramp_time = scene.solver.ramp_time;
       o.history_every = scene.solver.history_every;
+      o.energy_check = scene.solver.energy_check;
+      o.energy_tolerance = scene.solver.energy_tolerance;
       rep = solve_verlet(p.physics(), p.loading, o, u, v, &progress, observe);
     }
   }

@@ -130,6 +130,11 @@ void Loading::reactions(const double* fint, double s, int dpp, double* R) const 
   }
 }
 
+void Loading::multipliers(const double* fint, double s, double* out) const {
+  solve_multipliers([&](std::int64_t dof) { return (has_force() ? force_at(s, dof) : 0.0) - fint[dof]; });
+  std::copy(lambda_.begin(), lambda_.end(), out);
+}
+
 void Loading::reduce(double* r) const {
   if (!galerkin()) return zero_fixed(r);
   solve_multipliers([r](std::int64_t dof) { return r[dof]; });

@@ -208,6 +208,10 @@ void read_solver(Fields f, Scene& s) {
   v.max_rounds = f.small_integer("max_rounds", v.max_rounds);
   if (v.max_rounds < 1) f.fail("max_rounds", "must be at least 1");
   if (newton && v.max_iterations > 1000000000) f.fail("max_iterations", "is out of range");
+  v.energy_check = f.boolean("energy_check", v.energy_check);
+  v.energy_tolerance = f.number("energy_tolerance", v.energy_tolerance);
+  if (!(v.energy_tolerance > 0.0)) f.fail("energy_tolerance", "must be positive");
+  v.allow_unstable = f.boolean("allow_unstable", v.allow_unstable);
   f.finish();
 }
 
@@ -231,6 +235,19 @@ void read_constraints(Fields& top, Scene& s) {
     if (constrains(*b))
       top.fail("constraints", "rigid_body is for a body held by no support, but " + b->key +
                                   " fixes or prescribes displacements (remove one or the other)");
+}
+
+/// The improved and strong formulations have strong-form rows: K is not symmetric, M^-1 K
+/// has negative and complex eigenvalues, and explicit dynamics grows them exponentially
+/// whatever the step (issue 14; solvers/spectrum.hpp measures them). Verlet refuses them
+/// unless solver.allow_unstable.
+void refuse_unstable_dynamics(const YAML::Node& root, const Scene& s) {
+  if (s.solver.type != "verlet" || s.solver.allow_unstable || s.thin_plate()) return;
+  if (s.model.formulation != "improved" && s.model.formulation != "strong") return;
+  const YAML::Node model = root["model"];
+  throw InputError(detail::where(s.source, model ? model["formulation"] : model) + "model.formulation: " +
+                   s.model.formulation + " is non-symmetric and unstable in explicit dynamics (solver.type verlet); "
+                   "use consistent or classical, or set solver.allow_unstable: true to run it anyway");
 }
 
 }  // namespace
@@ -285,6 +302,7 @@ Scene parse_scene(const std::string& text, const std::string& source,
   }
   read_probes(top.list("probes"), source, s);
   top.finish();
+  refuse_unstable_dynamics(root, s);
   return s;
 }
 

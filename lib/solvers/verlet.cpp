@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "perinom/core/error.hpp"
 #include "perinom/solvers/vector_ops.hpp"
@@ -31,6 +32,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   for (auto& m : inv_mass) m = 1.0 / m;
   const double* fext = loading.force.empty() ? nullptr : loading.force.data();
   std::vector<double> a(n), fint(n), u_old(n), last_good(u);
+  std::vector<double> fint_fixed(loading.fixed.size());  // f_int at the constrained dofs, before the step
   rep.history.columns = {"step", "time", "kinetic_energy", "strain_energy", "external_work",
                          "total_energy"};
   const int dpp = model.dofs_per_particle();
@@ -54,6 +56,8 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
                        std::to_string(rep.iterations) + " (last finite state kept)");
     }
   };
+  // The energy balance: E - E0 - W against the largest energy and work seen so far.
+  double e0 = 0.0, e_max = 0.0, w_max = 0.0;
   auto record = [&](std::int64_t step, double t) {
     const double kin = parallel_sums<1>(n, [&](std::size_t k, double* acc) {
       acc[0] += 0.5 * v[k] * v[k] / inv_mass[k];
@@ -66,10 +70,31 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
       rep.history.values.resize(at + loading.support_names.size() * dpp);
       loading.reactions(fint.data(), factor(t), dpp, rep.history.values.data() + at);
     }
+    if (step == 0) e0 = kin + strain;
+    e_max = std::max(e_max, kin + strain), w_max = std::max(w_max, std::abs(work));
+    const double defect = std::abs(kin + strain - e0 - work);
+    const double bound = opt.energy_tolerance * std::max(e_max, w_max) + opt.energy_floor;
+    if (opt.energy_check && (defect > bound || !std::isfinite(defect))) {
+      u = last_good;
+      char what[640];
+      std::snprintf(what, sizeof what,
+                    "Verlet: the energy balance failed at step %lld (t = %.4e s): kinetic + strain energy "
+                    "%.4e J against %.4e J initial plus %.4e J of external work, off by %.3e J, more than %g times "
+                    "the largest energy or work so far (the discrete problem gains energy: an unstable formulation "
+                    "or time step; solver.energy_check: false turns this guard off; the state kept is that of the last "
+                    "earlier step that is a multiple of 100)",
+                    static_cast<long long>(step), t, kin + strain, e0, work, defect, opt.energy_tolerance);
+      throw SolveError(what);
+    }
   };
   double t = 0.0;
   loading.impose(factor(t), u.data());
   accelerate(t);
+  // Galerkin supports whose targets move (a prescribed displacement): their multipliers.
+  const bool moving_galerkin =
+      loading.galerkin() && std::any_of(loading.value.begin(), loading.value.end(), [](double v) { return v != 0.0; });
+  std::vector<double> lambda(moving_galerkin ? loading.fixed.size() : 0), lambda_old(lambda.size());
+  if (moving_galerkin) loading.multipliers(fint.data(), factor(t), lambda_old.data());
   record(0, t);
   ProgressSample sample;
   sample.limit = opt.steps;
@@ -84,13 +109,30 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     const double s_mid = 0.5 * (factor(t) + factor(t - dt));
     if (fext)
       work += s_mid * parallel_sums<1>(n, [&](std::size_t k, double* acc) { acc[0] += fext[k] * (u[k] - u_old[k]); })[0];
+    for (std::size_t k = 0; k < loading.fixed.size(); ++k) fint_fixed[k] = fint[loading.fixed[k]];
     accelerate(t);
+    // The constraints' work. Galerkin supports act through their multipliers on E u = t, so
+    // they work only as their targets move: lambda . dt (trapezoidal), zero for fixed ones.
+    // Otherwise the load on a constrained dof is replaced by its reaction, and the work there
+    // is f_int . du (trapezoidal), zero for supports that do not move.
+    if (moving_galerkin) {
+      const double ds = factor(t) - factor(t - dt);
+      loading.multipliers(fint.data(), factor(t), lambda.data());
+      for (std::size_t k = 0; k < loading.fixed.size(); ++k) work += 0.5 * (lambda_old[k] + lambda[k]) * ds * loading.value[k];
+      std::swap(lambda, lambda_old);
+    }
+    for (std::size_t k = 0; k < loading.fixed.size() && !loading.galerkin(); ++k) {
+      const std::int64_t dof = loading.fixed[k];
+      const double du = u[dof] - u_old[dof];
+      if (du != 0.0) work += (0.5 * (fint_fixed[k] + fint[dof]) - (fext ? s_mid * fext[dof] : 0.0)) * du;
+    }
     parallel_for(n, [&](std::size_t k) { v[k] += 0.5 * dt * a[k]; });
     loading.zero_fixed(v.data());
     rep.iterations = step;
     rep.end_time = t;
-    if (step % 100 == 0) last_good = u;
+    // Recorded first, so that a state the energy balance rejects is never kept as good.
     if (step % opt.history_every == 0) record(step, t);
+    if (step % 100 == 0) last_good = u;
     observe(step, t, u);
     if (progress && step % 50 == 0) {
       sample.iteration = step;

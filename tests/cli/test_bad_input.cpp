@@ -549,3 +549,31 @@ TEST_CASE("finite rotation is refused without a plastic material, an unknown kin
     require_rejected(s, {at_line(s, "follower_pressure:", "model.follower_pressure: must be true or false")});
   }
 }
+
+TEST_CASE("Verlet refuses the improved and strong formulations by model.formulation, unless allowed", "[cli]") {
+  // Their strong-form rows make K non-symmetric: M^-1 K has complex and negative eigenvalues,
+  // which explicit dynamics grows exponentially whatever the step (issue 14).
+  for (const std::string f : {"improved", "strong"}) {
+    DYNAMIC_SECTION(f) {
+      const std::string s = with(with(tiny_scene, "boundary:\n", "model: {formulation: " + f + "}\nboundary:\n"),
+                                 "  type: adr\n", "  type: verlet\n");
+      require_rejected(s, {at_line(s, "model:", "model.formulation: " + f + " is non-symmetric and unstable in "
+                                                "explicit dynamics"), "use consistent or classical",
+                           "solver.allow_unstable: true"});
+    }
+  }
+  SECTION("solver.allow_unstable: true lets it run") {
+    const std::string s = with(with(tiny_scene, "boundary:\n", "model: {formulation: improved}\nboundary:\n"),
+                               "  type: adr\n", "  type: verlet\n  allow_unstable: true\n");
+    ScratchDir dir;
+    std::ofstream(dir.path / "scene.yaml") << s;
+    const Outcome o = perinom(dir, "check scene.yaml");
+    INFO("stderr: " << o.err);
+    CHECK(o.exit_code == 0);
+  }
+}
+
+TEST_CASE("a non-positive energy tolerance is named", "[cli]") {
+  const std::string s = with(tiny_scene, "  type: adr\n", "  type: verlet\n  energy_tolerance: 0\n");
+  require_rejected(s, {at_line(s, "energy_tolerance:", "solver.energy_tolerance: must be positive")});
+}

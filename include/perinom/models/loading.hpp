@@ -82,6 +82,10 @@ struct Loading {
   /// the residual on the free dofs (for models whose internal forces sum to zero).
   /// R holds support_names.size() * dpp values; nothing is allocated.
   void reactions(const double* fint, double s, int dpp, double* R) const;
+  /// Galerkin supports: the multipliers at a state (fint its internal force), one per
+  /// constraint, the force (N) each constraint exerts in total (its reaction spread over the
+  /// dofs its row reads). out holds fixed.size() values; nothing is allocated.
+  void multipliers(const double* fint, double s, double* out) const;
   /// Column names in the order of reactions(): "NAME.Rx", "NAME.Ry" (, "NAME.Rz") for dpp 2
   /// or 3, "NAME.R" for one dof per particle (a plate's transverse force).
   std::vector<std::string> reaction_columns(int dpp) const;

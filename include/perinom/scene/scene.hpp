@@ -75,6 +75,9 @@ struct SolverSpec {
   std::string check = "none"; ///< "newton": also solve with Newton and report the difference
   double yield_tolerance = 1e-6;  ///< LBC: relative violation of the yield condition that flags
   int max_rounds = 1000;          ///< LBC: balance-correction rounds per load step
+  bool energy_check = true;       ///< Verlet: stop when the energy balance fails (VerletOptions)
+  double energy_tolerance = 0.5;  ///< Verlet: the balance's allowed share of the largest energy or work
+  bool allow_unstable = false;    ///< Verlet: run the improved or strong formulation anyway
 };
 
 struct ProbeSpec {

@@ -15,6 +15,15 @@ struct VerletOptions {
   std::int64_t steps = 1000;
   double ramp_time = 0.0;       ///< loads ramp linearly to full over this time (s); 0: at once
   std::int64_t history_every = 10;
+  /// The energy-balance guard: at every history row, the run stops (SolveError, exit 3)
+  /// when |E - E0 - W| > energy_tolerance * max(max W, max E) + energy_floor, with E the
+  /// kinetic plus strain energy, E0 its initial value, W the work of the loads and of the
+  /// constraints so far, and the maxima over the rows so far. Verlet's own energy error at a
+  /// stable step is a few percent at most; a discrete problem with negative or complex
+  /// eigenvalues (the improved and strong formulations) gains energy no load supplied.
+  bool energy_check = true;
+  double energy_tolerance = 0.5;
+  double energy_floor = 1e-20;  ///< J: keeps an all-zero run from tripping on rounding
 };
 
 /// The stable step 2 / omega_max, with omega_max^2 bounded by max_i sum_j |K_ij| / m_i
@@ -22,9 +31,13 @@ struct VerletOptions {
 double stable_time_step(const Model& model);
 
 /// Integrates M u'' = s(t) f_ext - f_int(u) from the given u, v (constrained dofs follow
-/// s(t) u_bar). The history records time, kinetic, strain and external-work energies.
-/// On NaN or Inf it stops with report.failure set and converged false, leaving in u the
-/// last state (checked every 100 steps) whose force was finite.
+/// s(t) u_bar). The history records time, kinetic, strain and external-work energies; the
+/// external work is that of the loads on the free dofs plus that of the constraints (their
+/// reactions f_int times the constrained dofs' motion, zero for fixed supports), each
+/// trapezoidal in time, so kinetic + strain - external work stays at its initial value.
+/// On NaN or Inf, or when the energy balance fails (VerletOptions::energy_check), it stops
+/// with report.failure set and converged false, leaving in u the last state kept (every 100
+/// steps, after that step's energy check) whose force was finite.
 SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptions& options,
                          std::vector<double>& u, std::vector<double>& v,
                          Progress* progress = nullptr, const Observer& observe = {});

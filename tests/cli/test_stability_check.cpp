@@ -1,0 +1,113 @@
+// The stability check as a user meets it: `perinom check --spectrum` and the warning of a
+// static run with a non-symmetric formulation, on the vibrating bar of the examples. Each
+// test runs the real binary in its own temporary folder.
+#include <catch2/catch.hpp>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A fresh folder of its own under the temp folder (concurrent test runs on one machine
+/// must not share one), removed with its contents when the last Outcome holding it goes.
+struct Scratch {
+  fs::path path;
+  explicit Scratch(const std::string& name) {
+    std::string pattern = (fs::temp_directory_path() / (name + "_XXXXXX")).string();
+    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp " + pattern);
+    path = pattern;
+  }
+  ~Scratch() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+
+struct Outcome {
+  int exit_code = -1;
+  std::string out, err;
+  fs::path dir;
+  std::shared_ptr<Scratch> scratch;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Runs `perinom COMMAND examples/vibrating_bar.yaml --set ...` in a fresh folder (kept
+/// while the Outcome lives, for the test's reads).
+Outcome bar(const std::string& name, const std::string& command, const std::string& sets) {
+  auto scratch = std::make_shared<Scratch>("perinom_stability_" + name);
+  const fs::path d = scratch->path;
+  const std::string cmd = "cd '" + d.string() + "' && '" PERINOM_EXE "' " + command + " '" PERINOM_SOURCE_DIR
+                          "/examples/vibrating_bar.yaml' " + sets + " >out.txt 2>err.txt";
+  const int status = std::system(cmd.c_str());
+  Outcome o;
+  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  o.out = slurp(d / "out.txt");
+  o.err = slurp(d / "err.txt");
+  o.dir = d;
+  o.scratch = scratch;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("perinom check --spectrum finds the improved formulation unstable and consistent stable", "[cli][spectrum]") {
+  const Outcome improved = bar("check_improved", "check --spectrum", "--set discretization.dx=0.002 --set model.formulation=improved --set solver.type=adr");
+  INFO(improved.out << improved.err);
+  REQUIRE(improved.exit_code == 0);
+  CHECK(improved.out.find("eigenvalues of M^-1 K on 490 free dofs") != std::string::npos);
+  CHECK(improved.out.find("growth rate") != std::string::npos);
+  CHECK(improved.out.find("\n  UNSTABLE: ") != std::string::npos);
+  const Outcome consistent = bar("check_consistent", "check --spectrum", "--set discretization.dx=0.002 --set model.formulation=consistent --set solver.type=adr");
+  INFO(consistent.out << consistent.err);
+  REQUIRE(consistent.exit_code == 0);
+  CHECK(consistent.out.find("\n  stable\n") != std::string::npos);
+  CHECK(consistent.out.find("UNSTABLE") == std::string::npos);
+}
+
+TEST_CASE("perinom check --spectrum refuses a scene above its size limit, naming the limit", "[cli][spectrum]") {
+  // dx 0.5 mm: 200 x 20 particles, 7,960 free dofs.
+  const Outcome o = bar("check_large", "check --spectrum", "--set discretization.dx=0.0005");
+  INFO(o.out << o.err);
+  CHECK(o.exit_code == 2);
+  CHECK(o.err.find("7960 free degrees of freedom, above the dense limit of 2000") != std::string::npos);
+}
+
+TEST_CASE("a static run with the improved formulation warns when the check finds it unstable", "[cli][spectrum]") {
+  const Outcome o = bar("run_improved", "run", "--out out --set discretization.dx=0.002 --set model.formulation=improved "
+                        "--set solver.type=newton");
+  INFO(o.out << o.err);
+  CHECK(o.exit_code == 0);
+  CHECK(o.err.find("warning: model.formulation improved: the discrete problem is unstable (") != std::string::npos);
+  CHECK(o.err.find("use consistent") != std::string::npos);
+  // Symmetric formulations are not checked and not warned about.
+  const Outcome c = bar("run_consistent", "run", "--out out --set discretization.dx=0.002 --set solver.type=newton");
+  INFO(c.out << c.err);
+  CHECK(c.exit_code == 0);
+  CHECK(c.err.empty());
+}
+
+TEST_CASE("a static run with the strong formulation above the size limit says the check was skipped", "[cli][spectrum]") {
+  // ADR stopped after 10 iterations (exit 1): the warning comes before the solve.
+  const Outcome o = bar("run_large", "run", "--out out --set discretization.dx=0.0005 --set model.formulation=strong "
+                        "--set solver.type=adr --set solver.max_iterations=10");
+  INFO(o.out << o.err);
+  CHECK(o.exit_code == 1);
+  CHECK(o.err.find("warning: model.formulation strong: non-symmetric") != std::string::npos);
+  CHECK(o.err.find("the stability check was skipped: 7960 free dofs exceed its limit of 2000") != std::string::npos);
+  CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
+}

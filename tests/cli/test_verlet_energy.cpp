@@ -1,0 +1,114 @@
+// Verlet's energy-balance guard as a user meets it, on the vibrating bar of the examples:
+// the improved formulation (allowed by solver.allow_unstable) is stopped with exit code 3,
+// the symmetric ones run their 4000 steps conserving energy. Each test runs the real binary
+// in its own temporary folder.
+#include <catch2/catch.hpp>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A fresh folder of its own under the temp folder (concurrent test runs on one machine
+/// must not share one), removed with its contents when the last Outcome holding it goes.
+struct Scratch {
+  fs::path path;
+  explicit Scratch(const std::string& name) {
+    std::string pattern = (fs::temp_directory_path() / (name + "_XXXXXX")).string();
+    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp " + pattern);
+    path = pattern;
+  }
+  ~Scratch() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+
+struct Outcome {
+  int exit_code = -1;
+  std::string out, err;
+  fs::path dir;
+  std::shared_ptr<Scratch> scratch;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Runs `perinom COMMAND examples/vibrating_bar.yaml --set ...` in a fresh folder (kept
+/// while the Outcome lives, for the test's reads).
+Outcome bar(const std::string& name, const std::string& command, const std::string& sets) {
+  auto scratch = std::make_shared<Scratch>("perinom_verlet_energy_" + name);
+  const fs::path d = scratch->path;
+  const std::string cmd = "cd '" + d.string() + "' && '" PERINOM_EXE "' " + command + " '" PERINOM_SOURCE_DIR
+                          "/examples/vibrating_bar.yaml' " + sets + " >out.txt 2>err.txt";
+  const int status = std::system(cmd.c_str());
+  Outcome o;
+  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  o.out = slurp(d / "out.txt");
+  o.err = slurp(d / "err.txt");
+  o.dir = d;
+  o.scratch = scratch;
+  return o;
+}
+
+/// history.csv's rows (step, time, kinetic, strain, external work, total).
+std::vector<std::vector<double>> history(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::stringstream s(line);
+    for (std::string cell; std::getline(s, cell, ',');) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("Verlet with the improved formulation is stopped by the energy balance long before its 4000 steps", "[cli][verlet]") {
+  // Issue 14: without the guard this run ends with 1e166 J of energy and exit 0.
+  const Outcome o = bar("verlet_improved", "run", "--out out --set model.formulation=improved --set solver.allow_unstable=true");
+  INFO(o.out << o.err);
+  CHECK(o.exit_code == 3);
+  CHECK(o.err.find("energy balance failed at step") != std::string::npos);
+  const auto rows = history(o.dir / "out" / "history.csv");
+  REQUIRE(!rows.empty());
+  CHECK(rows.back()[0] < 2000);
+  // The run stopped while the energy was still finite and small.
+  CHECK(rows.back()[2] + rows.back()[3] < 1.0);
+}
+
+TEST_CASE("Verlet with the consistent and classical formulations conserves energy on the vibrating bar", "[cli][verlet]") {
+  for (const char* f : {"consistent", "classical"}) {
+    const Outcome o = bar(std::string("verlet_") + f, "run", std::string("--out out --set model.formulation=") + f);
+    INFO(f << ": " << o.out << o.err);
+    REQUIRE(o.exit_code == 0);
+    CHECK(o.err.empty());
+    const auto rows = history(o.dir / "out" / "history.csv");
+    REQUIRE(rows.size() == 201);  // 4000 steps, a row every 20
+    double defect = 0.0, work = 0.0;
+    for (const auto& r : rows) defect = std::max(defect, std::abs(r[5])), work = std::max(work, r[4]);
+    WARN(f << ": max |kinetic + strain - external work| = " << defect << " J, max external work " << work
+           << " J, ratio " << defect / work);
+    CHECK(work > 0.0);
+    CHECK(defect < 1e-3 * work);
+  }
+}
