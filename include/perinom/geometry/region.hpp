@@ -20,14 +20,18 @@ struct Side {
 /// Parses a side name for a box of dimension dim; returns false if the name is unknown.
 bool parse_side(const std::string& name, int dim, Side& side);
 
-/// A region: either a side of the geometry's box, or an axis-aligned selector box.
+/// A region: a side of the geometry's box, an axis-aligned selector box, or (when `group` is
+/// not empty) a named group of boundary facets of a mesh or facet file (geometry/body.hpp).
 struct Region {
   bool is_side = true;
   Side side;
   std::array<double, 3> min{0, 0, 0}, max{0, 0, 0};  ///< selector box (m), inclusive
+  std::string group;  ///< a facet group's name; is_side is then false
+  bool is_group() const { return !group.empty(); }
 };
 
-/// The particles a region selects. A side selects the layer within one spacing of the face.
+/// The particles a side or box region selects (not a group: see group_particles). A side
+/// selects the layer within one spacing of the face.
 std::vector<ParticleId> select(const Region& region, const BoxGeometry& box,
                                const PointCloud& cloud);
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "perinom/core/timer.hpp"
+#include "perinom/geometry/body.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/models/loading.hpp"
 #include "perinom/models/thin_plate.hpp"
@@ -32,6 +33,13 @@ struct Problem {
   Loading loading;                 ///< the scene's `boundary` at solver.load_steps (single-stage solvers)
   std::vector<LoadStage> stages;   ///< load-path scenes (Scene::load_path): one per stage
   std::vector<BoundProbe> probes;
+  /// A body from geometry.mesh or geometry.points: its facet groups, its element count (0: not
+  /// a mesh), its mean element size (m) and how far its facets miss the divergence theorem
+  /// (divergence_theorem_defect; 0 when it has no facets).
+  std::vector<FacetGroup> groups;
+  std::size_t mesh_elements = 0;
+  double mean_size = 0.0;
+  double facet_defect = 0.0;
 
   TangentModel& physics() { return plate ? static_cast<TangentModel&>(*plate) : *model; }
   const TangentModel& physics() const { return plate ? static_cast<const TangentModel&>(*plate) : *model; }
