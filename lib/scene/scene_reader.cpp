@@ -250,7 +250,7 @@ void check_body_formulation(const YAML::Node& root, const Scene& s) {
   if (!s.body_files.given()) return;
   YAML::Node key = root;  // the line of model.formulation if given, else of the scene's first key
   if (const YAML::Node model = root["model"]; model.IsDefined() && model.IsMap() && model["formulation"].IsDefined())
-    key = model["formulation"];
+    key.reset(model["formulation"]);  // reset: operator= would overwrite the root node itself
   const std::string at = detail::where(s.source, key) + "model.formulation: ";
   const std::string body = s.body_files.mesh.empty() ? "geometry.points" : "geometry.mesh";
   if (s.model.formulation == "improved" || s.model.formulation == "strong")
