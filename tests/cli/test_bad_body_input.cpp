@@ -141,13 +141,13 @@ TEST_CASE("a side name on a mesh, and a group on a box, are refused by key", "[c
                    {"geometry.box", "exactly one of box"});
 }
 
-TEST_CASE("improved and strong need a box; jitter moves lattice particles only", "[cli][mesh]") {
+TEST_CASE("improved and strong need a box, and jitter moves lattice particles only", "[cli][mesh]") {
   require_rejected(with(mesh_scene, "boundary:", "model: {formulation: improved}\nboundary:"),
                    {"model.formulation", "with geometry.mesh use consistent or classical"});
   require_rejected(with(mesh_scene, "  dx: 0.001\n", "  dx: 0.001\n  jitter: 0.2\n"), {"discretization.jitter"});
 }
 
-TEST_CASE("a point file runs classical; the consistent formulation needs its facets", "[cli][mesh]") {
+TEST_CASE("a point file runs classical, and the consistent formulation needs its facets", "[cli][mesh]") {
   const MeshDir ok(points_scene, {{"cloud.csv", points_csv()}});
   const Outcome o = ok.check();
   INFO("stderr: " << o.err);
