@@ -31,6 +31,25 @@ void print_plate(const Problem& p) {
               support_name(e[2]), support_name(e[3]));
 }
 
+/// A body from a mesh or a point file: its elements, sizes against the horizon, groups.
+void print_body(const Problem& p) {
+  const Scene& s = p.scene;
+  const std::string horizon = s.discretization.horizon_neighbors > 0
+                                  ? std::to_string(s.discretization.horizon_neighbors) + " nearest neighbours"
+                                  : "delta = " + std::to_string(s.discretization.horizon_ratio) + " x dx " +
+                                        std::to_string(s.discretization.dx) + " m";
+  if (p.mesh_elements > 0)
+    std::printf("  mesh            %s: %zu elements, mean element size %.4g m (horizon %s)\n",
+                s.body_files.mesh.c_str(), p.mesh_elements, p.mean_size, horizon.c_str());
+  else
+    std::printf("  points          %s: mean spacing %.4g m (horizon %s)\n", s.body_files.points.c_str(), p.mean_size,
+                horizon.c_str());
+  std::string groups;
+  for (const auto& g : p.groups) groups += (groups.empty() ? "" : ", ") + g.name + " (" + std::to_string(g.facets.size()) + ")";
+  std::printf("  boundary groups %s\n", groups.empty() ? "none" : (groups + " facets").c_str());
+  if (p.facet_defect > 0.0) std::printf("  facets          divergence theorem defect %.2g\n", p.facet_defect);
+}
+
 }  // namespace
 
 int check(const Options& opt) {
@@ -44,6 +63,7 @@ int check(const Options& opt) {
               p.plate ? ", thin plate" : scene.dim == 2 ? (scene.material.plane == PlaneCondition::strain ? ", plane strain" : ", plane stress") : "");
   std::printf("  particles       %zu\n", p.cloud.size());
   std::printf("  bonds           %zu (%.1f per particle)\n", p.bonds, double(p.bonds) / p.cloud.size());
+  if (scene.body_files.given()) print_body(p);
   if (p.plate) print_plate(p);
   else std::printf("  model           %s, %s formulation, stabilization C_hg = %g\n",
                    scene.model.type.c_str(), scene.model.formulation.c_str(), scene.model.stabilization);

@@ -28,6 +28,7 @@ void check_plate_scene(const YAML::Node& root, const Scene& s) {
   Fields top(root, "", s.source), geometry(root["geometry"], "geometry", s.source),
       disc(root["discretization"], "discretization", s.source), material(root["material"], "material", s.source);
   if (s.dim != 2) top.fail("dimension", "a thin_plate is two-dimensional (its mid-plane)");
+  if (s.body_files.given()) geometry.fail(geometry.has("mesh") ? "mesh" : "points", "a thin_plate is a rectangle (geometry.box)");
   if (!geometry.has("thickness")) geometry.fail("thickness", "is required for a thin_plate: the plate thickness t (m)");
   if (!s.geometry.holes.empty()) geometry.fail("holes", "a thin_plate is a rectangle without holes");
   if (s.discretization.jitter > 0.0) disc.fail("jitter", "must be 0 for a thin_plate (its edge nodes lie on the edges)");

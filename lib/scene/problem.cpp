@@ -9,108 +9,39 @@
 
 #include "perinom/core/error.hpp"
 #include "perinom/geometry/boundary_facets.hpp"
+#include "perinom/geometry/mesh_body.hpp"
+#include "perinom/geometry/point_file.hpp"
 #include "perinom/neighbors/search.hpp"
+#include "scene_loading.hpp"
 
 namespace perinom {
 namespace {
 
-/// The side whose face carries each face-located constraint (axis -1: on the particle).
-using FaceOf = std::map<std::int64_t, Side>;
+using detail::BoundaryData;
+using detail::couple_to_faces;
+using detail::FaceOf;
+using detail::make_loading;
 
-/// Adds the nodal forces of a uniform traction t on a side: work-consistent loads at the
-/// side's boundary facets when there is a trace (the consistent formulation), else the
-/// classical body force on the outer layer (force = t * V_i / layer thickness).
-void add_side_traction(const Side& side, const std::vector<ParticleId>& ids, const double* t,
-                       const PointCloud& cloud, const BoundaryTrace* trace, std::vector<double>& force) {
-  const int d = cloud.dim;
-  if (trace && !trace->empty()) {
-    const auto& f = trace->facets();
-    for (std::size_t k = 0; k < f.size(); ++k)
-      if (f.side[k] == 2 * side.axis + (side.at_max ? 1 : 0)) trace->add_traction(k, t, force.data());
-    return;
+/// The particles (and facets, and groups) of a mesh or point file; errors name the key.
+Body read_body(const Scene& s) {
+  const BodyFiles& f = s.body_files;
+  Body body;
+  try {
+    if (!f.mesh.empty()) body = mesh_body(read_gmsh(f.mesh), s.dim, s.geometry.thickness);
+    else body.cloud = read_point_file(f.points, s.dim);
+  } catch (const InputError& e) {
+    throw InputError(f.where + ": " + (f.mesh.empty() ? f.points : f.mesh) + ": " + e.what());
   }
-  const double h = cloud.spacing[side.axis];
-  for (const auto i : ids)
-    for (int a = 0; a < d; ++a) force[i * d + a] += t[a] * cloud.volume[i] / h;
-}
-
-Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary,
-                     const PointCloud& cloud, FaceOf& face_of, const BoundaryTrace* trace) {
-  const int d = s.dim;
-  Loading load;
-  for (const auto& b : boundary) {
-    const auto ids = select(b.region, s.geometry, cloud);
-    if (ids.empty()) throw InputError(b.where + ".region: selects no particle");
-    const bool constrains = std::any_of(b.fix.begin(), b.fix.begin() + d, [](bool f) { return f; }) ||
-                            std::any_of(b.displacement.begin(), b.displacement.begin() + d,
-                                        [](const std::optional<double>& v) { return v.has_value(); });
-    const int support = constrains ? load.add_support(b.key) : -1;
-    for (int a = 0; a < d; ++a) {
-      if (!b.fix[a] && !b.displacement[a]) continue;
-      for (const auto i : ids) {
-        const std::int64_t dof = static_cast<std::int64_t>(i) * d + a;
-        load.fix(dof, b.displacement[a].value_or(0.0), support);
-        if (b.at_face) face_of[dof] = b.region.side;
-        else face_of.erase(dof);
-      }
+  body.cloud.dx = s.discretization.dx;
+  if (!f.facets.empty()) {
+    try {
+      read_facet_file(f.facets, body);
+    } catch (const InputError& e) {
+      throw InputError(s.source + ": geometry.facets: " + f.facets + ": " + e.what());
     }
-    if (!b.traction && !b.pressure) continue;
-    std::array<double, 3> t{0, 0, 0}, tp{0, 0, 0};
-    const auto n = outward_normal(b.region.side);
-    for (int a = 0; a < d; ++a) {
-      if (b.traction) t[a] += (*b.traction)[a];
-      if (b.pressure) t[a] -= *b.pressure * n[a], tp[a] = -*b.pressure * n[a];
-    }
-    if (load.force.empty()) load.force.assign(cloud.size() * d, 0.0);
-    add_side_traction(b.region.side, ids, t.data(), cloud, trace, load.force);
-    if (!b.pressure) continue;
-    if (load.pressure_force.empty()) load.pressure_force.assign(cloud.size() * d, 0.0);
-    add_side_traction(b.region.side, ids, tp.data(), cloud, trace, load.pressure_force);
   }
-  return load;
-}
-
-/// Face-located constraints: u_i + (grad u)_i . r = u_bar with r from the particle to its
-/// face, i.e. u_i (1 - sum_j c_j) + sum_j c_j u_j = u_bar with c_j = g_ij . r. With a trace (the
-/// consistent formulation) the point is the centroid of the particle's facet on that face and
-/// the row is the trace's own, so the constraint reacts exactly where a facet load acts.
-void couple_to_faces(Loading& load, const FaceOf& face_of, const BoxGeometry& box,
-                     const PointCloud& cloud, const GradientOperator& G, const BoundaryTrace& trace) {
-  const int d = cloud.dim;
-  std::map<std::pair<std::int64_t, int>, std::size_t> facet_of;  // (particle, side code) -> facet
-  for (std::size_t k = 0; k < trace.facets().size(); ++k)
-    facet_of[{trace.facets().particle[k], trace.facets().side[k]}] = k;
-  load.couplings.assign(1, 0);
-  for (std::size_t k = 0; k < load.fixed.size(); ++k) {
-    const auto it = face_of.find(load.fixed[k]);
-    double self = 1.0;
-    if (it != face_of.end()) {
-      const std::size_t i = load.fixed[k] / d, a = load.fixed[k] % d;
-      const int axis = it->second.axis;
-      const auto facet = facet_of.find({static_cast<std::int64_t>(i), 2 * axis + (it->second.at_max ? 1 : 0)});
-      if (facet != facet_of.end()) {
-        for (std::size_t e = trace.row_begin(facet->second); e < trace.row_end(facet->second); ++e) {
-          if (trace.col(e) == static_cast<ParticleId>(i)) {
-            self = trace.coef(e);
-            continue;
-          }
-          load.coupled.push_back(static_cast<std::int64_t>(trace.col(e)) * d + a);
-          load.coef.push_back(trace.coef(e));
-        }
-      } else {
-        const double r = (it->second.at_max ? box.max[axis] : box.min[axis]) - cloud.x[i * d + axis];
-        for (Offset m = G.offsets()[i]; m < G.offsets()[i + 1]; ++m) {
-          const double c = G.weight(m)[axis] * r;
-          load.coupled.push_back(static_cast<std::int64_t>(G.cols()[m]) * d + a);
-          load.coef.push_back(c);
-          self -= c;
-        }
-      }
-    }
-    load.scale.push_back(1.0 / self);
-    load.couplings.push_back(static_cast<Offset>(load.coupled.size()));
-  }
-  load.index_couplings();
+  if (f.mesh.empty()) set_mean_size(body, s.geometry.thickness);
+  return body;
 }
 
 /// The relative tolerance of the balance constraints: rigid_body asks of the loads: far above
@@ -218,11 +149,20 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
   p.scene = s;
   if (timer) timer->start("discretization");
   const std::string horizon = horizon_key(s);
-  try {
-    p.cloud = make_lattice(s.geometry, s.discretization.dx, s.discretization.jitter, s.discretization.seed);
-  } catch (const InputError& e) {
-    throw InputError(s.source + ": geometry: " + e.what());
+  Body body;
+  if (s.body_files.given()) {
+    body = read_body(s);
+  } else {
+    try {
+      body.cloud = make_lattice(s.geometry, s.discretization.dx, s.discretization.jitter, s.discretization.seed);
+    } catch (const InputError& e) {
+      throw InputError(s.source + ": geometry: " + e.what());
+    }
   }
+  p.cloud = body.cloud;
+  p.groups = body.groups;
+  p.mesh_elements = body.elements;
+  p.mean_size = body.mean_size;
   const Families families = scene_families(s, p.cloud);
   p.bonds = families.bonds();
   for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
@@ -240,23 +180,33 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
   opt.follower_pressure = s.model.follower_pressure;
   Surface surface;
   BoundaryFacets facets;
-  if (opt.formulation == Formulation::consistent) {
+  if (s.body_files.given()) {
+    facets = body.facets;
+    if (!facets.empty()) p.facet_defect = divergence_theorem_defect(facets, p.cloud);
+    // A mesh's facets close it to rounding; more means elements that do not share their faces.
+    if (!s.body_files.mesh.empty() && !(p.facet_defect <= 1e-9))
+      throw InputError(s.body_files.where + ": the mesh's boundary facets do not close it (divergence theorem defect " +
+                       std::to_string(p.facet_defect) + "); is the mesh conforming?");
+  } else if (opt.formulation == Formulation::consistent) {
     facets = lattice_facets(s.geometry, p.cloud);
-  } else if (opt.formulation != Formulation::classical) {
+  }
+  if (opt.formulation != Formulation::classical && opt.formulation != Formulation::consistent) {
     // E: within 2 delta of the surface (THEORY sec. 5); the strong form makes E everything.
     const double delta = *std::max_element(families.support.begin(), families.support.end());
     surface = find_surface(s.geometry, p.cloud,
                            opt.formulation == Formulation::strong ? INFINITY : 2.0 * delta);
   }
+  if (opt.formulation != Formulation::consistent) facets = BoundaryFacets{};
   try {
     p.model = std::make_unique<CorrespondenceModel>(p.cloud, families, s.material, opt, std::move(surface),
                                                     std::move(facets));
   } catch (const InputError& e) {
     throw InputError(s.source + ": " + horizon + ": " + e.what());
   }
-  const BoundaryTrace* trace = &p.model->trace();
+  // The loads see the trace's facets (the consistent formulation) or the body's own.
+  BoundaryData data{p.model->trace().empty() ? &body.facets : &p.model->trace().facets(), &p.groups, &p.model->trace()};
   FaceOf face_of;
-  p.loading = make_loading(s, s.boundary, p.cloud, face_of, trace);
+  p.loading = make_loading(s, s.boundary, p.cloud, face_of, data);
   std::vector<FaceOf> stage_faces;
   if (s.load_path() && s.stages.empty()) {
     p.stages.push_back({"load", s.solver.load_steps, p.loading});
@@ -266,16 +216,16 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
     std::vector<BoundarySpec> boundary = s.boundary;
     boundary.insert(boundary.end(), st.boundary.begin(), st.boundary.end());
     stage_faces.emplace_back();
-    p.stages.push_back({st.name, st.steps, make_loading(s, boundary, p.cloud, stage_faces.back(), trace)});
+    p.stages.push_back({st.name, st.steps, make_loading(s, boundary, p.cloud, stage_faces.back(), data)});
   }
   if (s.constraints == "rigid_body") pin_rigid_body(p);
-  if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, p.model->G(), *trace);
+  if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, p.model->G(), data);
   // The seed's collocation formulations keep collocated constraints (loading.hpp).
   const bool collocated = opt.formulation == Formulation::improved || opt.formulation == Formulation::strong;
   p.loading.collocated = collocated;
   for (auto& stage : p.stages) stage.loading.collocated = collocated;
   for (std::size_t k = 0; k < p.stages.size(); ++k)
-    if (!stage_faces[k].empty()) couple_to_faces(p.stages[k].loading, stage_faces[k], s.geometry, p.cloud, p.model->G(), *trace);
+    if (!stage_faces[k].empty()) couple_to_faces(p.stages[k].loading, stage_faces[k], s.geometry, p.cloud, p.model->G(), data);
   if (timer) timer->stop();
   return p;
 }

@@ -26,6 +26,10 @@ Region read_region(Fields& f, const Scene& s) {
     r.max.fill(INFINITY);
     return r;
   }
+  const bool body = s.body_files.given();
+  if (n.IsScalar() && body)
+    f.fail("region", "'" + n.as<std::string>() + "': a body from geometry." + (s.body_files.mesh.empty() ? "points" : "mesh") +
+                         " has no box sides; name a boundary group ({group: NAME}), all, or a box");
   if (n.IsScalar()) {
     r.is_side = true;
     if (!parse_side(n.as<std::string>(), s.dim, r.side))
@@ -34,9 +38,18 @@ Region read_region(Fields& f, const Scene& s) {
                            ", or xmin ... zmax)");
     return r;
   }
-  if (!n.IsMap()) f.fail("region", "must be a side name, all, {box: {min, max}} or {point: [...]}");
+  if (!n.IsMap()) f.fail("region", "must be a side name, all, {box: {min, max}}, {point: [...]} or {group: NAME}");
   Fields rf(n, f.key("region"), f.source());
-  if (rf.has("box") == rf.has("point")) f.fail("region", "give exactly one of box or point");
+  if (rf.has("group")) {
+    r.is_side = false;
+    if (rf.has("box") || rf.has("point")) rf.fail("group", "give exactly one of group, box or point");
+    r.group = rf.text("group");
+    if (r.group.empty()) rf.fail("group", "must name a group");
+    if (!body) rf.fail("group", "names a boundary group of geometry.mesh or geometry.facets; a box has sides (top, left, ...)");
+    rf.finish();
+    return r;
+  }
+  if (rf.has("box") == rf.has("point")) f.fail("region", "give exactly one of box, point or group");
   r.is_side = false;
   if (rf.has("point")) {
     r.is_point = true;
@@ -90,9 +103,10 @@ std::vector<BoundarySpec> read_boundary(const std::vector<YAML::Node>& items, co
     const std::string at = f.text("at", "layer");
     if (at != "layer" && at != "face") f.fail("at", "must be layer or face");
     b.at_face = at == "face";
-    if (b.at_face && !b.region.is_side) f.fail("at", "face needs a side region (top, left, ...)");
-    if ((b.traction || b.pressure) && !b.region.is_side)
-      f.fail("region", "a traction or pressure acts on a side of the box (top, left, ...)");
+    const bool surface = b.region.is_side || b.region.is_group();
+    if (b.at_face && !surface) f.fail("at", "face needs a side region (top, left, ...) or a group ({group: NAME})");
+    if ((b.traction || b.pressure) && !surface)
+      f.fail("region", "a traction or pressure acts on a side of the box (top, left, ...) or a group of facets ({group: NAME})");
     f.finish();
     out.push_back(b);
   }

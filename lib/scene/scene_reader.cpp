@@ -1,6 +1,7 @@
 // Reads a scene file into a Scene, strictly: unknown keys, wrong types, missing keys and
 // values out of range all end in an InputError that names the key and its line.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -22,9 +23,42 @@ using detail::read_boundary;
 using detail::read_probes;
 using detail::read_stages;
 
+/// A file named by a geometry key, resolved against the scene file's folder.
+std::string scene_relative(const std::string& source, const std::string& file) {
+  const std::filesystem::path p(file);
+  if (p.is_absolute()) return file;
+  return (std::filesystem::path(source).parent_path() / p).string();
+}
+
+/// geometry.mesh, or geometry.points with geometry.facets: the body from files.
+void read_body_files(Fields& f, Scene& s) {
+  auto& b = s.body_files;
+  const char* key = f.has("mesh") ? "mesh" : "points";
+  b.where = detail::where(s.source, f.node(key)) + f.key(key);
+  const std::string file = f.text(key);
+  if (file.empty()) f.fail(key, "must name a file");
+  (f.has("mesh") ? b.mesh : b.points) = scene_relative(s.source, file);
+  if (f.has("facets")) {
+    if (b.points.empty()) f.fail("facets", "belongs to geometry.points (a mesh carries its own facets)");
+    const std::string facets = f.text("facets");
+    if (facets.empty()) f.fail("facets", "must name a file");
+    b.facets = scene_relative(s.source, facets);
+  }
+  if (f.has("holes")) f.fail("holes", std::string("cut a box; geometry.") + key + " carries its own shape");
+}
+
 void read_geometry(Fields f, Scene& s) {
   auto& g = s.geometry;
   g.dim = s.dim;
+  if (int(f.has("box")) + int(f.has("mesh")) + int(f.has("points")) != 1)
+    f.fail("box", "give exactly one of box (a lattice), mesh (a gmsh .msh file) or points (a CSV file)");
+  g.thickness = f.number("thickness", 1.0);
+  if (!(g.thickness > 0.0)) f.fail("thickness", "must be positive");
+  if (!f.has("box")) {
+    read_body_files(f, s);
+    return f.finish();
+  }
+  if (f.has("facets")) f.fail("facets", "belongs to geometry.points (a box's facets are its lattice cells')");
   Fields box = f.map("box");
   const auto lo = box.vector("min", s.dim), hi = box.vector("max", s.dim);
   box.finish();
@@ -32,8 +66,6 @@ void read_geometry(Fields f, Scene& s) {
     if (!(hi[a] > lo[a])) f.fail("box", "max must exceed min on every axis (empty geometry)");
   g.min = lo;
   g.max = hi;
-  g.thickness = f.number("thickness", 1.0);
-  if (!(g.thickness > 0.0)) f.fail("thickness", "must be positive");
   const auto holes = f.list("holes");
   for (std::size_t k = 0; k < holes.size(); ++k) {
     Fields h(holes[k], f.key("holes[" + std::to_string(k) + "]"), f.source());
@@ -76,6 +108,7 @@ void read_discretization(Fields f, Scene& s) {
     f.fail("weight", "must be constant, inverse_distance, inverse_square or gaussian");
   d.jitter = f.number("jitter", 0.0);
   if (d.jitter < 0.0 || d.jitter >= 1.0) f.fail("jitter", "must lie in [0, 1)");
+  if (d.jitter > 0.0 && s.body_files.given()) f.fail("jitter", "moves lattice particles; a mesh or point file places its own");
   d.seed = static_cast<std::uint64_t>(f.integer("seed", 1));
   f.finish();
 }
@@ -250,6 +283,23 @@ void refuse_unstable_dynamics(const YAML::Node& root, const Scene& s) {
                    "use consistent or classical, or set solver.allow_unstable: true to run it anyway");
 }
 
+/// A body from files has no box, so only the formulations that need no box surface apply;
+/// the consistent one needs facets, which a point file has only with geometry.facets.
+void check_body_formulation(const YAML::Node& root, const Scene& s) {
+  if (!s.body_files.given()) return;
+  YAML::Node key = root;  // the line of model.formulation if given, else of the scene's first key
+  if (const YAML::Node model = root["model"]; model.IsDefined() && model.IsMap() && model["formulation"].IsDefined())
+    key.reset(model["formulation"]);  // reset: operator= would overwrite the root node itself
+  const std::string at = detail::where(s.source, key) + "model.formulation: ";
+  const std::string body = s.body_files.mesh.empty() ? "geometry.points" : "geometry.mesh";
+  if (s.model.formulation == "improved" || s.model.formulation == "strong")
+    throw InputError(at + s.model.formulation + " finds the surface of a box; with " + body +
+                     " use consistent or classical");
+  if (s.model.formulation == "consistent" && s.body_files.mesh.empty() && s.body_files.facets.empty())
+    throw InputError(at + "the consistent formulation (the default) needs the boundary facets, and " + body +
+                     " has none: give geometry.facets, or use formulation classical");
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& source,
@@ -276,6 +326,7 @@ Scene parse_scene(const std::string& text, const std::string& source,
   if (top.has("model")) read_model(top.map("model"), s);
   else top.mark("model");
   if (s.thin_plate()) detail::check_plate_scene(root, s);
+  else check_body_formulation(root, s);
   s.boundary = read_boundary(top.list("boundary"), source, s);
   read_stages(top.list("stages"), source, s);
   read_constraints(top, s);

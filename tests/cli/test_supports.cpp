@@ -135,7 +135,7 @@ TEST_CASE("a point region with a wrong length or non-numbers is bad input naming
   }
   const Run both = run("both", with(scene, "{region: left, traction", "{region: {point: [0, 0], box: {min: [0, 0], max: [1, 1]}}, traction"));
   CHECK(both.exit_code == 2);
-  CHECK(both.err.find("boundary[0].region: give exactly one of box or point") != std::string::npos);
+  CHECK(both.err.find("boundary[0].region: give exactly one of box, point or group") != std::string::npos);
 }
 
 TEST_CASE("constraints rigid_body holds a free plate under balanced tractions at the uniform stress", "[cli][supports]") {

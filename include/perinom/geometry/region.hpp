@@ -21,18 +21,23 @@ struct Side {
 /// Parses a side name for a box of dimension dim; returns false if the name is unknown.
 bool parse_side(const std::string& name, int dim, Side& side);
 
-/// A region: a side of the geometry's box, an axis-aligned selector box, or (is_point) the
-/// one particle nearest a point, which stays the same material point when dx changes.
+/// A region: a side of the geometry's box, an axis-aligned selector box, (is_point) the one
+/// particle nearest a point, which stays the same material point when dx changes, or (when
+/// `group` is not empty) a named group of boundary facets of a mesh or facet file
+/// (geometry/body.hpp).
 struct Region {
   bool is_side = true;
   bool is_point = false;
   Side side;
   std::array<double, 3> min{0, 0, 0}, max{0, 0, 0};  ///< selector box (m), inclusive
   std::array<double, 3> point{0, 0, 0};              ///< is_point: the point (m)
+  std::string group;  ///< a facet group's name; is_side is then false
+  bool is_group() const { return !group.empty(); }
 };
 
-/// The particles a region selects. A side selects the layer within one spacing of the face;
-/// a point the nearest particle (reference positions; the lowest index on a tie).
+/// The particles a side, box or point region selects (not a group: see group_particles). A
+/// side selects the layer within one spacing of the face; a point the nearest particle
+/// (reference positions; the lowest index on a tie).
 std::vector<ParticleId> select(const Region& region, const BoxGeometry& box,
                                const PointCloud& cloud);
 

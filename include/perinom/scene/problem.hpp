@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "perinom/core/timer.hpp"
+#include "perinom/geometry/body.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/models/loading.hpp"
 #include "perinom/models/rigid_body.hpp"
@@ -35,6 +36,13 @@ struct Problem {
   std::vector<BoundProbe> probes;
   /// constraints: rigid_body: the pins added to every loading (support "rigid_body").
   std::vector<RigidBodyPin> pins;
+  /// A body from geometry.mesh or geometry.points: its facet groups, its element count (0: not
+  /// a mesh), its mean element size (m) and how far its facets miss the divergence theorem
+  /// (divergence_theorem_defect; 0 when it has no facets).
+  std::vector<FacetGroup> groups;
+  std::size_t mesh_elements = 0;
+  double mean_size = 0.0;
+  double facet_defect = 0.0;
 
   TangentModel& physics() { return plate ? static_cast<TangentModel&>(*plate) : *model; }
   const TangentModel& physics() const { return plate ? static_cast<const TangentModel&>(*plate) : *model; }

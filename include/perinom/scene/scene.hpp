@@ -16,6 +16,16 @@
 
 namespace perinom {
 
+/// geometry.mesh, or geometry.points with an optional geometry.facets: a body read from files
+/// instead of a lattice filling geometry.box. Paths are resolved against the scene file's folder.
+struct BodyFiles {
+  std::string mesh;    ///< a gmsh .msh file (format 4.1, ASCII)
+  std::string points;  ///< a CSV of particles (x, y[, z], volume)
+  std::string facets;  ///< a CSV of boundary facets for `points`
+  std::string where;   ///< "file:line: geometry.mesh" (or .points, .facets) for messages
+  bool given() const { return !mesh.empty() || !points.empty(); }
+};
+
 struct DiscretizationSpec {
   double dx = 0.0;            ///< m
   double horizon_ratio = 0.0; ///< delta = ratio * dx (radius families), or
@@ -103,7 +113,8 @@ struct Scene {
   std::string source;  ///< file name, for messages
   std::string name;
   int dim = 2;
-  BoxGeometry geometry;
+  BoxGeometry geometry;  ///< the box (and holes) of a lattice; dim and thickness for every body
+  BodyFiles body_files;  ///< a mesh or a point file instead of the box
   DiscretizationSpec discretization;
   LinearElastic material;  ///< the elastic moduli (of the plastic law too) and the density
   std::optional<DruckerPrager> plasticity;  ///< material.type: drucker_prager

@@ -1,0 +1,168 @@
+// Boundary conditions turned into a Loading (scene_loading.hpp).
+#include "scene_loading.hpp"
+
+#include <algorithm>
+#include <optional>
+
+#include <array>
+
+#include "perinom/core/error.hpp"
+#include "perinom/geometry/region.hpp"
+
+namespace perinom::detail {
+namespace {
+
+/// Adds the nodal forces of a uniform traction t on a side: work-consistent loads at the
+/// side's boundary facets when there is a trace (the consistent formulation), else the
+/// classical body force on the outer layer (force = t * V_i / layer thickness).
+void add_side_traction(const Side& side, const std::vector<ParticleId>& ids, const double* t,
+                       const PointCloud& cloud, const BoundaryTrace* trace, std::vector<double>& force) {
+  const int d = cloud.dim;
+  if (trace && !trace->empty()) {
+    const auto& f = trace->facets();
+    for (std::size_t k = 0; k < f.size(); ++k)
+      if (f.side[k] == 2 * side.axis + (side.at_max ? 1 : 0)) trace->add_traction(k, t, force.data());
+    return;
+  }
+  const double h = cloud.spacing[side.axis];
+  for (const auto i : ids)
+    for (int a = 0; a < d; ++a) force[i * d + a] += t[a] * cloud.volume[i] / h;
+}
+
+/// Adds the forces of a traction t plus a pressure p (along each facet's own outward normal)
+/// on the facets of a group: work-consistent loads through the trace, or, without one (the
+/// classical formulation), the facet's force A_k t_k on its owner.
+void add_group_traction(const FacetGroup& group, const double* t, double p, const BoundaryData& boundary,
+                        std::vector<double>& force) {
+  const BoundaryFacets& f = *boundary.facets;
+  const int d = f.dim;
+  for (const std::size_t k : group.facets) {
+    double tk[3] = {0, 0, 0};
+    for (int a = 0; a < d; ++a) tk[a] = t[a] - p * f.normal[k * d + a];
+    if (boundary.trace && !boundary.trace->empty()) {
+      boundary.trace->add_traction(k, tk, force.data());
+      continue;
+    }
+    for (int a = 0; a < d; ++a) force[f.particle[k] * d + a] += f.area[k] * tk[a];
+  }
+}
+
+/// The group a boundary item names; errors name the key and list the groups there are.
+const FacetGroup& region_group(const BoundarySpec& b, const BoundaryData& boundary) {
+  const FacetGroup* g = boundary.groups ? find_group(*boundary.groups, b.region.group) : nullptr;
+  if (!g) {
+    std::string known;
+    if (boundary.groups)
+      for (const auto& h : *boundary.groups) known += (known.empty() ? "" : ", ") + h.name;
+    throw InputError(b.where + ".region.group: unknown group '" + b.region.group + "' (" +
+                     (known.empty() ? "the body has no boundary groups" : "the body's groups: " + known) + ")");
+  }
+  if (g->facets.empty())
+    throw InputError(b.where + ".region.group: group '" + b.region.group + "' holds no boundary facet");
+  return *g;
+}
+
+}  // namespace
+
+Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, const PointCloud& cloud,
+                     FaceOf& face_of, const BoundaryData& data) {
+  const int d = s.dim;
+  Loading load;
+  for (const auto& b : boundary) {
+    const FacetGroup* group = b.region.is_group() ? &region_group(b, data) : nullptr;
+    const auto ids = group ? group_particles(*group, *data.facets) : select(b.region, s.geometry, cloud);
+    if (ids.empty()) throw InputError(b.where + ".region: selects no particle");
+    // A group's face constraint acts at the largest facet the particle owns in the group.
+    std::map<ParticleId, std::size_t> facet_of;
+    if (group)
+      for (const std::size_t k : group->facets) {
+        const auto it = facet_of.find(data.facets->particle[k]);
+        if (it == facet_of.end() || data.facets->area[k] > data.facets->area[it->second])
+          facet_of[data.facets->particle[k]] = k;
+      }
+    const bool constrains = std::any_of(b.fix.begin(), b.fix.begin() + d, [](bool f) { return f; }) ||
+                            std::any_of(b.displacement.begin(), b.displacement.begin() + d,
+                                        [](const std::optional<double>& v) { return v.has_value(); });
+    const int support = constrains ? load.add_support(b.key) : -1;
+    for (int a = 0; a < d; ++a) {
+      if (!b.fix[a] && !b.displacement[a]) continue;
+      for (const auto i : ids) {
+        const std::int64_t dof = static_cast<std::int64_t>(i) * d + a;
+        load.fix(dof, b.displacement[a].value_or(0.0), support);
+        if (b.at_face) face_of[dof] = {b.region.side, group ? static_cast<std::int64_t>(facet_of.at(i)) : -1};
+        else face_of.erase(dof);
+      }
+    }
+    if (!b.traction && !b.pressure) continue;
+    if (load.force.empty()) load.force.assign(cloud.size() * d, 0.0);
+    if (b.pressure && load.pressure_force.empty()) load.pressure_force.assign(cloud.size() * d, 0.0);
+    if (group) {
+      const double zero[3] = {0, 0, 0};
+      add_group_traction(*group, b.traction ? b.traction->data() : zero, b.pressure.value_or(0.0), data, load.force);
+      if (b.pressure) add_group_traction(*group, zero, *b.pressure, data, load.pressure_force);
+      continue;
+    }
+    std::array<double, 3> t{0, 0, 0}, tp{0, 0, 0};
+    const auto n = outward_normal(b.region.side);
+    for (int a = 0; a < d; ++a) {
+      if (b.traction) t[a] += (*b.traction)[a];
+      if (b.pressure) t[a] -= *b.pressure * n[a], tp[a] = -*b.pressure * n[a];
+    }
+    add_side_traction(b.region.side, ids, t.data(), cloud, data.trace, load.force);
+    if (!b.pressure) continue;
+    add_side_traction(b.region.side, ids, tp.data(), cloud, data.trace, load.pressure_force);
+  }
+  return load;
+}
+
+void couple_to_faces(Loading& load, const FaceOf& face_of, const BoxGeometry& box, const PointCloud& cloud,
+                     const GradientOperator& G, const BoundaryData& data) {
+  const int d = cloud.dim;
+  const BoundaryTrace* trace = data.trace && !data.trace->empty() ? data.trace : nullptr;
+  std::map<std::pair<std::int64_t, int>, std::size_t> facet_of;  // (particle, side code) -> facet
+  if (trace)
+    for (std::size_t k = 0; k < trace->facets().size(); ++k)
+      facet_of[{trace->facets().particle[k], trace->facets().side[k]}] = k;
+  load.couplings.assign(1, 0);
+  for (std::size_t k = 0; k < load.fixed.size(); ++k) {
+    const auto it = face_of.find(load.fixed[k]);
+    double self = 1.0;
+    if (it != face_of.end()) {
+      const std::size_t i = load.fixed[k] / d, a = load.fixed[k] % d;
+      const int axis = it->second.side.axis;
+      std::int64_t facet = it->second.facet;
+      if (facet < 0 && trace) {
+        const auto found = facet_of.find({static_cast<std::int64_t>(i), 2 * axis + (it->second.side.at_max ? 1 : 0)});
+        if (found != facet_of.end()) facet = static_cast<std::int64_t>(found->second);
+      }
+      if (facet >= 0 && trace) {
+        for (std::size_t e = trace->row_begin(facet); e < trace->row_end(facet); ++e) {
+          if (trace->col(e) == static_cast<ParticleId>(i)) {
+            self = trace->coef(e);
+            continue;
+          }
+          load.coupled.push_back(static_cast<std::int64_t>(trace->col(e)) * d + a);
+          load.coef.push_back(trace->coef(e));
+        }
+      } else {
+        double r[3] = {0, 0, 0};
+        if (facet >= 0)
+          for (int b = 0; b < d; ++b) r[b] = data.facets->centroid[facet * d + b] - cloud.x[i * d + b];
+        else
+          r[axis] = (it->second.side.at_max ? box.max[axis] : box.min[axis]) - cloud.x[i * d + axis];
+        for (Offset m = G.offsets()[i]; m < G.offsets()[i + 1]; ++m) {
+          double c = 0.0;
+          for (int b = 0; b < d; ++b) c += G.weight(m)[b] * r[b];
+          load.coupled.push_back(static_cast<std::int64_t>(G.cols()[m]) * d + a);
+          load.coef.push_back(c);
+          self -= c;
+        }
+      }
+    }
+    load.scale.push_back(1.0 / self);
+    load.couplings.push_back(static_cast<Offset>(load.coupled.size()));
+  }
+  load.index_couplings();
+}
+
+}  // namespace perinom::detail

@@ -1,0 +1,39 @@
+// The Lame cylinder on body-fitted particles (verification/lame): a quarter of a thick-walled
+// cylinder meshed by gmsh, 20 quadrangles through the wall, internal pressure, rollers at the
+// faces of the two straight edges, the consistent formulation.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "../support/direct_solve.hpp"
+#include "perinom/scene/problem.hpp"
+
+using namespace perinom;
+
+TEST_CASE("the Lame cylinder's radial displacement at the inner surface is within 1% at 20 particles through the wall",
+          "[verification][mesh]") {
+  Problem p = build_problem(read_scene(PERINOM_SOURCE_DIR "/verification/lame/lame.yaml"));
+  const double a = 0.01, b = 0.02, pressure = 1e6, E = 200e9, nu = 0.3;
+  const auto ur = [&](double r) {
+    return (1 + nu) * a * a * pressure / (E * (b * b - a * a)) * ((1 - 2 * nu) * r + b * b / r);
+  };
+  const auto u = test::direct_solve(*p.model, p.loading);
+  std::vector<double> sigma, H(u.size() * 2);
+  p.model->stress3(u.data(), sigma);
+  p.model->gradient(u.data(), H.data());
+  // At the inner surface, through the probes' reconstruction: on the x axis, and at 45 degrees.
+  const ProbeFields fields{p.cloud, u, sigma, H};
+  const double at_0 = point_probe_value(p.probes.at(0), fields);
+  const double at_45 = (point_probe_value(p.probes.at(1), fields) + point_probe_value(p.probes.at(2), fields)) / std::sqrt(2.0);
+  // And at every particle, against the closed form at its radius.
+  double worst = 0.0;
+  for (std::size_t i = 0; i < p.cloud.size(); ++i) {
+    const double x = p.cloud.x[2 * i], y = p.cloud.x[2 * i + 1], r = std::hypot(x, y);
+    worst = std::max(worst, std::abs((u[2 * i] * x + u[2 * i + 1] * y) / r - ur(r)) / ur(a));
+  }
+  WARN("u_r(a) = " << ur(a) << " m; at 0 deg " << at_0 << " (" << (at_0 / ur(a) - 1) * 100 << "%), at 45 deg "
+                   << at_45 << " (" << (at_45 / ur(a) - 1) * 100 << "%); worst particle " << worst * 100 << "%");
+  CHECK(std::abs(at_0 / ur(a) - 1) <= 0.01);
+  CHECK(std::abs(at_45 / ur(a) - 1) <= 0.01);
+  CHECK(worst <= 0.01);
+}
