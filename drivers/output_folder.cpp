@@ -4,7 +4,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <regex>
 
 #include "perinom/core/error.hpp"
 
@@ -31,9 +30,20 @@ int remove_outputs(const std::string& dir, bool only_tmp) {
 }  // namespace
 
 bool is_run_output(const std::string& file_name) {
-  static const std::regex names(
-      R"((summary\.json|history\.csv|load_steps\.csv|.*\.vtu|.*\.pvd|probe_.*\.csv|.*_[0-9]{6,}\.csv)(\.tmp)?)");
-  return std::regex_match(file_name, names);
+  const auto ends = [](const std::string& s, const std::string& end) {
+    return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
+  };
+  std::string name = file_name;
+  if (ends(name, ".tmp")) name.resize(name.size() - 4);
+  if (name == "summary.json" || name == "history.csv" || name == "load_steps.csv") return true;
+  if (ends(name, ".vtu") || ends(name, ".pvd")) return true;
+  if (!ends(name, ".csv")) return false;
+  if (name.rfind("probe_", 0) == 0) return true;
+  // A snapshot's CSV: NAME_ and at least six digits (the .vtu's index).
+  const std::string stem = name.substr(0, name.size() - 4);
+  const std::size_t underscore = stem.rfind('_');
+  return underscore != std::string::npos && stem.size() - underscore - 1 >= 6 &&
+         stem.find_first_not_of("0123456789", underscore + 1) == std::string::npos;
 }
 
 RunFolder::RunFolder(std::string dir, bool keep) : dir_(std::move(dir)) {
