@@ -1,6 +1,6 @@
 // perinom: the command line program.
-//   perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N] [--keep]
-//   perinom check SCENE [--set dotted.key=value]...
+//   perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N] [--keep] [--max-memory SIZE]
+//   perinom check SCENE [--set dotted.key=value]... [--max-memory SIZE]
 //   perinom bench force --dimension 3 --n N [--threads T]
 //   perinom material-point [--test 1..7] [--substeps S] [--out DIR]
 // Exit codes: 0 success, 1 the solve did not converge, 2 bad input, 3 the solve failed.
@@ -22,8 +22,8 @@ namespace {
 void usage() {
   std::fprintf(stderr,
                "usage:\n"
-               "  perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N] [--keep]\n"
-               "  perinom check SCENE [--set dotted.key=value]...\n"
+               "  perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N] [--keep] [--max-memory SIZE]\n"
+               "  perinom check SCENE [--set dotted.key=value]... [--max-memory SIZE]\n"
                "  perinom bench force --dimension 2|3 --n N [--threads T] [--stabilization C] [--storage auto|fused|assembled|matrix_free] [--single]\n"
                "  perinom material-point [--test 1..7] [--substeps S] [--out DIR]\n");
 }
@@ -78,6 +78,18 @@ int main(int argc, char** argv) {
       else if (a == "--substeps") opt.substeps = static_cast<int>(integer(1, 100000000));
       else if (a == "--single") opt.single_precision = true;
       else if (a == "--keep") opt.keep = true;
+      else if (a == "--max-memory") {
+        // A whole number of bytes, or of KiB, MiB, GiB, TiB with the suffix K, M, G or T.
+        const std::string v = value();
+        const std::size_t digits = v.find_first_not_of("0123456789");
+        const std::string unit = digits == std::string::npos ? "" : v.substr(digits);
+        const double scale = unit == "" ? 1.0 : unit == "K" ? 1024.0 : unit == "M" ? 1048576.0
+                           : unit == "G" ? 1073741824.0 : unit == "T" ? 1099511627776.0 : 0.0;
+        if (digits == 0 || scale == 0.0 || v.size() - unit.size() > 15)
+          throw InputError("option --max-memory: '" + v + "' is not a size (bytes, or a whole number with K, M, G or T)");
+        opt.max_memory = std::stod(v.substr(0, digits)) * scale;
+        if (opt.max_memory <= 0.0) throw InputError("option --max-memory: must be positive");
+      }
       else if (a.rfind("--", 0) == 0) throw InputError("unknown option " + a);
       else opt.positional.push_back(a);
     }

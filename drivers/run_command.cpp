@@ -19,6 +19,7 @@
 #include "perinom/solvers/verlet.hpp"
 #include "difference.hpp"
 #include "load_path_run.hpp"
+#include "memory_estimate.hpp"
 #include "output_folder.hpp"
 #include "plate_output.hpp"
 #include "snapshot.hpp"
@@ -151,6 +152,8 @@ int run(const Options& opt) {
   PhaseTimer timer;
   timer.start("read scene");
   const Scene scene = read_scene(opt.positional[0], opt.overrides);
+  const MemoryEstimate estimate = estimate_memory(scene);
+  require_memory(scene, estimate, opt.max_memory > 0.0 ? opt.max_memory : available_memory(), opt.max_memory > 0.0);
   const std::string dir = opt.out.empty() ? "out/" + scene.name : opt.out;
   const RunFolder folder(dir, opt.keep);
   if (folder.removed() > 0)
@@ -265,6 +268,10 @@ int run(const Options& opt) {
   Json wall = Json::object();
   for (const auto& ph : timer.phases()) wall[ph.first] = ph.second;
   summary["wall_time"] = wall;
+  Json memory = Json::object();
+  memory["estimated_bytes"] = estimate.bytes;
+  memory["peak_bytes"] = peak_resident_bytes();
+  summary["memory"] = memory;
   // Last, so a summary.json beside the marker-free folder means the run ended here.
   write_json_file(dir + "/summary.json", summary);
 
