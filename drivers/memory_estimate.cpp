@@ -78,7 +78,8 @@ MemoryEstimate estimate_memory(const Scene& s) {
   const double solid = 1.0 - hole_fraction(s.geometry);
   e.particles = cells * solid;
   if (s.discretization.horizon_neighbors > 0) {
-    e.bonds = e.particles * s.discretization.horizon_neighbors;
+    // More neighbours than particles is refused once the cloud exists; here it is all pairs.
+    e.bonds = e.particles * std::min<double>(s.discretization.horizon_neighbors, std::max(e.particles - 1.0, 0.0));
     e.key = "discretization.horizon.neighbors";
   } else {
     e.bonds = lattice_bonds(n, h, d, s.discretization.horizon_ratio * dx) * solid;
