@@ -9,6 +9,12 @@
 using namespace cli_test;
 
 TEST_CASE("the memory estimate is within 10% of the measured peak on three example scenes", "[cli]") {
+#ifdef __SANITIZE_ADDRESS__
+  // AddressSanitizer's shadow memory and quarantine multiply the resident size: the
+  // costs per bond are those of the plain build, measured there.
+  WARN("not measured under AddressSanitizer");
+  return;
+#endif
   struct Case {
     const char* scene;
     const char* dx;
