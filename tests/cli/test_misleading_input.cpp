@@ -82,6 +82,7 @@ TEST_CASE("command-line numbers are read whole and within their bounds", "[cli]"
   SECTION("the bench and material-point options") {
     require_one_clear_error(perinom(dir, "bench force --dimension 2 --n 4x"), {"--n", "'4x'"});
     require_one_clear_error(perinom(dir, "bench force --dimension 4 --n 4"), {"--dimension", "out of range"});
+    require_one_clear_error(perinom(dir, "bench force --dimension 3 --n 2000"), {"--n: 2000^3 particles", "2e9"});
     require_one_clear_error(perinom(dir, "bench force --dimension 2 --n 4 --stabilization 0.5x"), {"--stabilization"});
     require_one_clear_error(perinom(dir, "material-point --test 2x"), {"--test", "'2x'"});
     require_one_clear_error(perinom(dir, "material-point --substeps 99999999999999999999"), {"--substeps", "out of range"});
