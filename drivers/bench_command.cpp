@@ -84,6 +84,9 @@ int bench(const Options& opt) {
   if (opt.dimension != 2 && opt.dimension != 3) throw InputError("--dimension must be 2 or 3");
   if (opt.n < 4) throw InputError("--n must be at least 4");
   const int d = opt.dimension;
+  if (std::pow(double(opt.n), d) > 2.0e9)
+    throw InputError("--n: " + std::to_string(opt.n) + "^" + std::to_string(d) +
+                     " particles are more than perinom's limit of 2e9");
   BoxGeometry box;
   box.dim = d;
   for (int a = 0; a < d; ++a) box.max[a] = double(opt.n);

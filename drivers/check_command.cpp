@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "memory_estimate.hpp"
 #include "perinom/core/error.hpp"
 #include "perinom/scene/problem.hpp"
 #include "perinom/solvers/jacobian.hpp"
@@ -55,6 +56,8 @@ void print_body(const Problem& p) {
 int check(const Options& opt) {
   if (opt.positional.size() != 1) throw InputError("check needs exactly one scene file");
   const Scene scene = read_scene(opt.positional[0], opt.overrides);
+  const MemoryEstimate estimate = estimate_memory(scene);
+  require_memory(scene, estimate, opt.max_memory > 0.0 ? opt.max_memory : available_memory(), opt.max_memory > 0.0);
   PhaseTimer timer;
   Problem p = build_problem(scene, &timer);  // not const: StaticSystem sizes the Jacobian from the model
   const auto mb = [](std::size_t b) { return b / 1048576.0; };
@@ -126,6 +129,8 @@ int check(const Options& opt) {
                 newton ? "" : ", Newton Jacobian (no newton solver)",
                 scene.model.stabilization > 0.0 ? "" : ", stabilization S (C_hg = 0)");
   std::printf("  total           %.2f MiB (%.1f bytes per bond)\n", mb(total), double(total) / p.bonds);
+  std::printf("  peak memory     %.2f MiB (VmHWM, the process so far), estimated before building %.2f MiB\n",
+              mb(peak_resident_bytes()), mb(estimate.bytes));
   for (const auto& probe : p.probes)
     std::printf("  probe %-20s %s, %zu particle(s)\n", probe.spec.name.c_str(),
                 probe.spec.is_line ? "line" : "point", probe.particles.size());

@@ -5,10 +5,16 @@
 
 namespace perinom::cli {
 
+/// The most OpenMP threads --threads accepts (more than any machine perinom runs on has
+/// cores; a mistyped 10000 would make every parallel region a crowd).
+constexpr int max_threads = 1024;
+
 struct Options {
   std::string command, out;
   std::vector<std::string> positional, overrides;
-  int threads = 0;
+  int threads = 0;                ///< 0: the OpenMP default (the available cores)
+  bool keep = false;              ///< run: keep an earlier run's files in the output folder
+  double max_memory = 0.0;        ///< bytes a scene may need (--max-memory); 0: the available memory
   int dimension = 3;
   long n = 20;
   double stabilization = 0.5;

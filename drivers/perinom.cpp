@@ -1,12 +1,15 @@
 // perinom: the command line program.
-//   perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N]
-//   perinom check SCENE [--set dotted.key=value]... [--spectrum]
+//   perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N] [--keep] [--max-memory SIZE]
+//   perinom check SCENE [--set dotted.key=value]... [--max-memory SIZE] [--spectrum]
 //   perinom bench force --dimension 3 --n N [--threads T]
 //   perinom material-point [--test 1..7] [--substeps S] [--out DIR]
 // Exit codes: 0 success, 1 the solve did not converge, 2 bad input, 3 the solve failed.
 #include <omp.h>
 
+#include <charconv>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -19,8 +22,8 @@ namespace {
 void usage() {
   std::fprintf(stderr,
                "usage:\n"
-               "  perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N]\n"
-               "  perinom check SCENE [--set dotted.key=value]... [--spectrum]\n"
+               "  perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N] [--keep] [--max-memory SIZE]\n"
+               "  perinom check SCENE [--set dotted.key=value]... [--max-memory SIZE] [--spectrum]\n"
                "  perinom bench force --dimension 2|3 --n N [--threads T] [--stabilization C] [--storage auto|fused|assembled|matrix_free] [--single]\n"
                "  perinom material-point [--test 1..7] [--substeps S] [--out DIR]\n");
 }
@@ -43,37 +46,56 @@ int main(int argc, char** argv) {
         if (k + 1 >= args.size()) throw InputError("option " + a + " needs a value");
         return args[++k];
       };
-      auto integer = [&]() {
+      // Whole numbers and reals are read strictly: all of the text, within the bounds.
+      auto integer = [&](long lo, long hi) {
         const std::string v = value();
-        try {
-          return std::stol(v);
-        } catch (const std::exception&) {
+        long n = 0;
+        const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), n);
+        if (ec == std::errc::result_out_of_range || (ec == std::errc() && end == v.data() + v.size() && (n < lo || n > hi)))
+          throw InputError("option " + a + ": " + v + " is out of range (" + std::to_string(lo) + " to " +
+                           std::to_string(hi) + ")");
+        if (ec != std::errc() || end != v.data() + v.size() || v.empty())
           throw InputError("option " + a + ": '" + v + "' is not a whole number");
-        }
+        return n;
       };
-      if (a == "--out") opt.out = value();
-      else if (a == "--set") opt.overrides.push_back(value());
-      else if (a == "--threads") opt.threads = static_cast<int>(integer());
-      else if (a == "--dimension") opt.dimension = static_cast<int>(integer());
-      else if (a == "--n") opt.n = integer();
+      if (a == "--out") {
+        opt.out = value();
+        if (opt.out.empty()) throw InputError("option --out: the folder name is empty");
+      } else if (a == "--set") opt.overrides.push_back(value());
+      else if (a == "--threads") opt.threads = static_cast<int>(integer(1, cli::max_threads));
+      else if (a == "--dimension") opt.dimension = static_cast<int>(integer(2, 3));
+      else if (a == "--n") opt.n = integer(4, 100000);
       else if (a == "--stabilization") {
         const std::string v = value();
-        try {
-          opt.stabilization = std::stod(v);
-        } catch (const std::exception&) {
-          throw InputError("option --stabilization: '" + v + "' is not a number");
-        }
+        char* end = nullptr;
+        opt.stabilization = v.empty() ? NAN : std::strtod(v.c_str(), &end);
+        if (v.empty() || end != v.c_str() + v.size() || !std::isfinite(opt.stabilization))
+          throw InputError("option --stabilization: '" + v + "' is not a finite number");
+        if (opt.stabilization < 0.0) throw InputError("option --stabilization: must be zero or positive");
       }
       else if (a == "--storage") opt.storage = value();
-      else if (a == "--test") opt.test = static_cast<int>(integer());
-      else if (a == "--substeps") opt.substeps = static_cast<int>(integer());
+      else if (a == "--test") opt.test = static_cast<int>(integer(1, 7));
+      else if (a == "--substeps") opt.substeps = static_cast<int>(integer(1, 100000000));
       else if (a == "--single") opt.single_precision = true;
       else if (a == "--spectrum") opt.spectrum = true;
+      else if (a == "--keep") opt.keep = true;
+      else if (a == "--max-memory") {
+        // A whole number of bytes, or of KiB, MiB, GiB, TiB with the suffix K, M, G or T.
+        const std::string v = value();
+        const std::size_t digits = v.find_first_not_of("0123456789");
+        const std::string unit = digits == std::string::npos ? "" : v.substr(digits);
+        const double scale = unit == "" ? 1.0 : unit == "K" ? 1024.0 : unit == "M" ? 1048576.0
+                           : unit == "G" ? 1073741824.0 : unit == "T" ? 1099511627776.0 : 0.0;
+        if (digits == 0 || scale == 0.0 || v.size() - unit.size() > 15)
+          throw InputError("option --max-memory: '" + v + "' is not a size (bytes, or a whole number with K, M, G or T)");
+        opt.max_memory = std::stod(v.substr(0, digits)) * scale;
+        if (opt.max_memory <= 0.0) throw InputError("option --max-memory: must be positive");
+      }
       else if (a.rfind("--", 0) == 0) throw InputError("unknown option " + a);
       else opt.positional.push_back(a);
     }
-    if (opt.threads < 0) throw InputError("--threads must be positive");
     if (opt.threads > 0) omp_set_num_threads(opt.threads);
+    else if (omp_get_max_threads() > cli::max_threads) omp_set_num_threads(cli::max_threads);
     if (opt.command == "run") return cli::run(opt);
     if (opt.command == "check") return cli::check(opt);
     if (opt.command == "bench") return cli::bench(opt);

@@ -19,6 +19,8 @@
 #include "perinom/solvers/verlet.hpp"
 #include "difference.hpp"
 #include "load_path_run.hpp"
+#include "memory_estimate.hpp"
+#include "output_folder.hpp"
 #include "plate_output.hpp"
 #include "reactions_output.hpp"
 #include "snapshot.hpp"
@@ -31,16 +33,6 @@ namespace {
 namespace fs = std::filesystem;
 using io::Json;
 using io::write_json_file;
-
-void prepare_output(const std::string& dir) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  const std::string probe = dir + "/.perinom-write-test";
-  std::ofstream f(probe);
-  if (ec || !f) throw InputError("--out " + dir + ": the output folder cannot be created or written");
-  f.close();
-  fs::remove(probe, ec);
-}
 
 void write_history(const std::string& path, const History& h) {
   io::CsvWriter csv(path);
@@ -61,6 +53,7 @@ Json probe_results(const Problem& p, const std::vector<double>& u, const std::st
   for (const auto& probe : p.probes) {
     if (!probe.spec.is_line) {
       const double v = point_probe_value(probe, fields);
+      if (!std::isfinite(v)) throw SolveError("probe '" + probe.spec.name + "': its value is NaN or Inf");
       out[probe.spec.name] = v;
       std::printf("  %s = %.6e\n", probe.spec.name.c_str(), v);
       continue;
@@ -75,6 +68,8 @@ Json probe_results(const Problem& p, const std::vector<double>& u, const std::st
       for (int a = 0; a < d; ++a) row[1 + a] = p.cloud.x[i * d + a], row[4 + a] = u[i * d + a];
       row[7] = von_mises(sigma.data() + i * 9);
       row[8] = probe_value(probe.spec, i, fields);
+      for (const double x : row)
+        if (!std::isfinite(x)) throw SolveError("probe '" + probe.spec.name + "': a value is NaN or Inf");
       csv.row(row);
     }
     csv.close();
@@ -159,8 +154,13 @@ int run(const Options& opt) {
   PhaseTimer timer;
   timer.start("read scene");
   const Scene scene = read_scene(opt.positional[0], opt.overrides);
+  const MemoryEstimate estimate = estimate_memory(scene);
+  require_memory(scene, estimate, opt.max_memory > 0.0 ? opt.max_memory : available_memory(), opt.max_memory > 0.0);
   const std::string dir = opt.out.empty() ? "out/" + scene.name : opt.out;
-  prepare_output(dir);
+  const RunFolder folder(dir, opt.keep);
+  if (folder.removed() > 0)
+    std::printf("perinom: removed %d files of an earlier run from %s (--keep keeps them)\n", folder.removed(),
+                dir.c_str());
   std::printf("perinom: %s: building particles, families and operators\n", scene.name.c_str());
   std::fflush(stdout);
   Problem p = build_problem(scene, &timer);
@@ -222,14 +222,28 @@ int run(const Options& opt) {
   const std::string& failure = rep.failure;
   timer.start("output");
   const std::int64_t steps_done = static_cast<std::int64_t>(rep.history.rows());
-  if (scene.load_path()) {
-    if (last_snapshot != steps_done || !failure.empty()) add_snapshot(series, double(steps_done), p, u, dir);
-    probe_history.write(p, dir);
-  } else if (last_snapshot != rep.iterations || !failure.empty()) {
-    add_snapshot(series, dynamic ? rep.end_time : double(rep.iterations), p, u, dir);
+  // The final state: after a divergence the last state that passed the guard. A snapshot
+  // whose fields are not finite is refused (snapshot.hpp); then neither it nor the probes'
+  // files are written, and the summary says why.
+  std::string final_state_error;
+  Json probes;
+  try {
+    if (scene.load_path()) {
+      if (last_snapshot != steps_done || (!failure.empty() && !rep.diverged))
+        add_snapshot(series, double(steps_done), p, u, dir);
+      probe_history.write(p, dir);
+    } else if (last_snapshot != rep.iterations) {
+      add_snapshot(series, dynamic ? rep.end_time : double(rep.iterations), p, u, dir);
+    }
+    probes = probe_results(p, u, dir);
+  } catch (const SolveError& e) {
+    final_state_error = e.what();
+    std::fprintf(stderr, "perinom: the final state is not written: %s\n", e.what());
   }
   write_history(dir + (scene.load_path() ? "/load_steps.csv" : "/history.csv"), rep.history);
+  const bool converged = failure.empty() && rep.converged && final_state_error.empty();
   Json summary = Json::object();
+  summary["status"] = rep.diverged || !final_state_error.empty() ? "diverged" : converged ? "converged" : "not_converged";
   summary["scene"] = scene.source;
   summary["name"] = scene.name;
   summary["dimension"] = scene.dim;
@@ -244,7 +258,7 @@ int run(const Options& opt) {
   Json solver = Json::object();
   solver["type"] = scene.solver.type;
   solver["iterations"] = static_cast<long long>(rep.iterations);
-  solver["converged"] = failure.empty() && rep.converged;
+  solver["converged"] = converged;
   solver["residual"] = rep.residual;
   solver["displacement_change"] = rep.displacement_change;
   if (scene.load_path()) solver["load_steps"] = static_cast<long long>(steps_done);
@@ -252,7 +266,12 @@ int run(const Options& opt) {
     solver["stable_time_step"] = rep.stable_time_step;
     solver["end_time"] = rep.end_time;
   }
+  if (rep.diverged) {
+    solver["diverged_at"] = static_cast<long long>(rep.diverged_at);
+    solver["last_good"] = static_cast<long long>(scene.load_path() ? steps_done : rep.iterations);
+  }
   if (!failure.empty()) solver["error"] = failure;
+  if (!final_state_error.empty()) solver["final_state_error"] = final_state_error;
   summary["solver"] = solver;
   if (failure.empty()) {
     // The final state's load factor: 1, or Verlet's ramp where the run ended.
@@ -265,14 +284,20 @@ int run(const Options& opt) {
     timer.start("output");
   }
   if (const PlasticPoints* plastic = p.model ? p.model->plastic() : nullptr) summary["plasticity"] = plastic_summary(*plastic);
-  summary["probes"] = probe_results(p, u, dir);
+  summary["probes"] = probes;
   timer.stop();
   Json wall = Json::object();
   for (const auto& ph : timer.phases()) wall[ph.first] = ph.second;
   summary["wall_time"] = wall;
+  Json memory = Json::object();
+  memory["estimated_bytes"] = estimate.bytes;
+  memory["peak_bytes"] = peak_resident_bytes();
+  summary["memory"] = memory;
+  // Last, so a summary.json beside the marker-free folder means the run ended here.
   write_json_file(dir + "/summary.json", summary);
 
-  if (!failure.empty()) throw SolveError(failure + "; the last good state is in " + dir);
+  if (!final_state_error.empty() && failure.empty()) throw SolveError(final_state_error);
+  if (!failure.empty()) throw SolveError(failure + "; results in " + dir);
   if (dynamic)
     std::printf("perinom: %lld steps to t = %.6e s (stable step %.3e s); results in %s\n",
                 static_cast<long long>(rep.iterations), rep.end_time, rep.stable_time_step, dir.c_str());

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "perinom/core/error.hpp"
 #include "perinom/io/csv_writer.hpp"
 #include "plate_output.hpp"
 
@@ -28,6 +29,15 @@ void write_csv(const std::string& path, const Problem& p, const std::vector<io::
   csv.close();
 }
 
+/// The guard of every snapshot: no NaN or Inf reaches a file.
+void require_finite(const std::vector<io::PointField>& fields, std::size_t n) {
+  for (const auto& f : fields)
+    for (std::size_t k = 0; k < n * f.components; ++k)
+      if (!std::isfinite(f.data[k]))
+        throw SolveError("the snapshot's field '" + f.name + "' is NaN or Inf at particle " +
+                         std::to_string(k / f.components));
+}
+
 }  // namespace
 
 void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const std::vector<double>& u,
@@ -36,6 +46,7 @@ void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const st
   if (p.plate) {
     const PlateFields plate(p, u);
     const std::vector<io::PointField> fields = plate.list(p, u);
+    require_finite(fields, p.cloud.size());
     const std::string file = series.add(time, d, p.cloud.size(), p.cloud.x.data(), fields);
     series.write();
     if (p.scene.output.csv && !dir.empty()) write_csv(dir + "/" + file.substr(0, file.size() - 4) + ".csv", p, fields);
@@ -96,6 +107,7 @@ void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const st
     fields.push_back({"plastic_strain", 9, eps_p.data()});
     fields.push_back({"yielded", 1, yielded.data()});
   }
+  require_finite(fields, n);
   const std::string file = series.add(time, d, n, p.cloud.x.data(), fields);
   series.write();
   if (p.scene.output.csv && !dir.empty())

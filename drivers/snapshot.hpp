@@ -16,6 +16,8 @@ namespace perinom::cli {
 /// committed equivalent plastic strain, plastic strain tensor and yield flag (1: the particle
 /// has yielded, xi > 0). A thin plate writes its own fields (plate_output.hpp). With output.csv the same point data also go to
 /// dir/NAME_<index>.csv (the .vtu's name with .csv), one row per particle, for scripts.
+/// @throws SolveError naming the field and particle, before writing anything, if a field
+/// holds NaN or Inf (the solvers treat it as a failed NaN/Inf guard).
 void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const std::vector<double>& u,
                   const std::string& dir = "");
 

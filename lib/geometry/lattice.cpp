@@ -25,18 +25,19 @@ PointCloud make_lattice(const BoxGeometry& box, double dx, double jitter, std::u
   cloud.dx = dx;
   cloud.spacing.assign(d, dx);
   double cell_volume = (d == 2) ? box.thickness : 1.0;
+  // Ids are 32-bit; refuse a mistyped dx before trying to allocate the lattice. The counts
+  // are formed in double first: lround of 1e298 (dx = 1e-300) is undefined behaviour.
+  double count = 1.0;
+  for (int a = 0; a < d; ++a) count *= std::max(1.0, std::round((box.max[a] - box.min[a]) / dx));
+  if (!(count <= 2.0e9))
+    throw InputError("discretization.dx: the box holds about " + std::to_string(count).substr(0, 12) +
+                     " lattice cells at this spacing, more than perinom's 2e9 particle limit");
   for (int a = 0; a < d; ++a) {
     const double length = box.max[a] - box.min[a];
     n[a] = std::max(1L, std::lround(length / dx));
     cloud.spacing[a] = length / n[a];
     cell_volume *= cloud.spacing[a];
   }
-  // Ids are 32-bit; refuse a mistyped dx before trying to allocate the lattice.
-  const double count = double(n[0]) * n[1] * (d == 3 ? n[2] : 1);
-  if (count > 2.0e9)
-    throw InputError("the box holds " + std::to_string(static_cast<long long>(count)) +
-                     " lattice cells at this spacing, more than perinom's 2e9 particle limit "
-                     "(check discretization.dx)");
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> offset(-0.5, 0.5);
   const long nz = (d == 3) ? n[2] : 1;

@@ -33,11 +33,11 @@ CsvWriter::CsvWriter(std::string path) : path_(std::move(path)) {
 }
 
 CsvWriter::~CsvWriter() {
-  try {
-    close();
-  } catch (...) {
-    // A destructor must not throw; the .tmp file stays behind as evidence.
-  }
+  // Not closed: an exception left the file unfinished. It is discarded, not published.
+  if (file_ == nullptr) return;
+  std::fclose(file_);
+  std::error_code ignored;
+  std::filesystem::remove(path_ + ".tmp", ignored);
 }
 
 void CsvWriter::require_open(const char* operation) const {
@@ -79,13 +79,17 @@ void CsvWriter::close() {
   const bool write_failed = std::ferror(file_) != 0;
   const bool close_failed = std::fclose(file_) != 0;
   file_ = nullptr;
-  if (write_failed || close_failed)
+  std::error_code ec, ignored;
+  if (write_failed || close_failed) {
+    std::filesystem::remove(tmp, ignored);
     throw InputError("cannot write CSV file '" + path_ + "': writing '" + tmp + "' failed");
-  std::error_code ec;
+  }
   std::filesystem::rename(tmp, path_, ec);
-  if (ec)
+  if (ec) {
+    std::filesystem::remove(tmp, ignored);
     throw InputError("cannot write CSV file '" + path_ + "': renaming '" + tmp +
                      "' failed: " + ec.message());
+  }
 }
 
 }  // namespace perinom::io

@@ -48,10 +48,19 @@ Families radius_families(const PointCloud& cloud, double delta) {
       hi[a] = std::max(hi[a], cloud.x[i * d + a]);
     }
   }
+  // Buckets of side `cell` >= delta, so the neighbours of a particle lie in the 3^d
+  // buckets around it. A horizon tiny against the cloud (delta = 1e-300) would ask for more
+  // buckets than a long counts: then they grow until there are about as many as particles.
+  double cell = delta, buckets = 1.0;
+  for (int a = 0; a < d; ++a) buckets *= (hi[a] - lo[a]) / cell + 1.0;
+  const double most = 8.0 * static_cast<double>(n) + 64.0;
+  if (!(buckets <= most)) cell = std::max(delta, std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) /
+                                                     std::pow(most, 1.0 / d));
   std::array<long, 3> cells{1, 1, 1};
-  for (int a = 0; a < d; ++a) cells[a] = std::max(1L, static_cast<long>((hi[a] - lo[a]) / delta) + 1);
+  for (int a = 0; a < d; ++a)
+    cells[a] = std::max(1L, static_cast<long>(std::min((hi[a] - lo[a]) / cell, most)) + 1);
   auto cell_of = [&](const double* p, int a) {
-    return std::min(cells[a] - 1, static_cast<long>((p[a] - lo[a]) / delta));
+    return std::min(cells[a] - 1, static_cast<long>((p[a] - lo[a]) / cell));
   };
   // Bucket the particles by cell (counting sort).
   const long ncell = cells[0] * cells[1] * cells[2];

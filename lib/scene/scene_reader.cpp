@@ -88,16 +88,35 @@ void read_geometry(Fields f, Scene& s) {
   f.finish();
 }
 
+/// The lattice's cell counts in double, before any integer conversion: a spacing of 1e-300
+/// gives counts no integer holds, one of 1e308 gives none at all.
+void check_lattice_size(Fields& f, const Scene& s) {
+  const double dx = s.discretization.dx;
+  double cells = 1.0;
+  for (int a = 0; a < s.dim; ++a) {
+    const double along = (s.geometry.max[a] - s.geometry.min[a]) / dx;
+    if (!(along >= 0.5))
+      f.fail("dx", "is more than twice the box's length along " + std::string(1, "xyz"[a]) +
+                       " (the lattice would hold no particle there)");
+    cells *= along;
+  }
+  if (!(cells <= 2.0e9))
+    f.fail("dx", "gives about " + std::to_string(cells).substr(0, 12) +
+                     " lattice cells, more than perinom's limit of 2e9 particles");
+}
+
 void read_discretization(Fields f, Scene& s) {
   auto& d = s.discretization;
   d.dx = f.number("dx");
   if (!(d.dx > 0.0)) f.fail("dx", "must be positive");
+  check_lattice_size(f, s);
   Fields h = f.map("horizon");
   if (h.has("ratio") == h.has("neighbors"))
     f.fail("horizon", "give exactly one of ratio (delta = ratio * dx) or neighbors (k nearest)");
   if (h.has("ratio")) {
     d.horizon_ratio = h.number("ratio");
     if (!(d.horizon_ratio > 0.0)) h.fail("ratio", "must be positive");
+    if (!std::isfinite(d.horizon_ratio * d.dx)) h.fail("ratio", "times dx is not a finite length");
   } else {
     const auto k = h.small_integer("neighbors", 0);
     if (k < s.dim) h.fail("neighbors", "must be at least the dimension");
@@ -152,6 +171,8 @@ void read_material(Fields f, Scene& s) {
     else f.fail("plane", "must be strain or stress");
   } else if (f.has("plane")) {
     f.fail("plane", "only 2-D scenes have a plane condition");
+  } else {
+    f.mark("plane");  // plane: null is absent, as everywhere
   }
   if (type == "drucker_prager") {
     if (m.plane == PlaneCondition::stress) f.fail("plane", "Drucker-Prager plasticity needs plane strain");
@@ -300,24 +321,58 @@ void check_body_formulation(const YAML::Node& root, const Scene& s) {
                      " has none: give geometry.facets, or use formulation classical");
 }
 
+/// The scene text as one YAML document. A second document (a stray "---") would be
+/// dropped by YAML::Load without a word, and with it every key below the separator.
+YAML::Node load_one_document(const std::string& text, const std::string& source) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(source + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+  }
+  detail::require_closed_quotes(text, source);
+  if (documents.size() <= 1) return documents.empty() ? YAML::Node() : documents[0];
+  // The separator's line: the first "---" or "..." line after some content.
+  std::istringstream in(text);
+  bool content = false;
+  int number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++number;
+    const bool marker = (line.rfind("---", 0) == 0 || line.rfind("...", 0) == 0) &&
+                        (line.size() == 3 || line[3] == ' ' || line[3] == '\t' || line[3] == '\r');
+    if (marker && content)
+      throw InputError(source + ":" + std::to_string(number) +
+                       ": a second YAML document starts here ('" + line.substr(0, 3) +
+                       "'); a scene is one document (remove the line)");
+    const auto first = line.find_first_not_of(" \t\r");
+    if (!marker && first != std::string::npos && line[first] != '#' && line[first] != '%') content = true;
+  }
+  throw InputError(source + ": the file holds " + std::to_string(documents.size()) +
+                   " YAML documents; a scene is one document");
+}
+
+/// A name safe as a file and folder name on every system: letters, digits, '_', '-', '.',
+/// and not "." or ".." (which name folders that already exist).
+bool is_file_name(const std::string& name) {
+  if (name.empty() || name == "." || name == "..") return false;
+  return name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") ==
+         std::string::npos;
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& source,
                   const std::vector<std::string>& overrides) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw InputError(source + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
-  }
+  YAML::Node root = load_one_document(text, source);
   if (!root.IsMap()) throw InputError(source + ": a scene is a mapping of keys to values");
   for (const auto& o : overrides) detail::apply_override(root, o);
   Scene s;
   s.source = source;
   Fields top(root, "", source);
   s.name = top.text("name");
-  if (s.name.empty() || s.name.find_first_of("/\\") != std::string::npos)
-    top.fail("name", "must be a non-empty name without slashes (it names output files)");
+  if (!is_file_name(s.name))
+    top.fail("name", "must be made of letters, digits, '_', '-' and '.', and not be '.' or '..' "
+                     "(it names the output folder and files)");
   s.dim = top.small_integer("dimension", 0);
   if (s.dim != 2 && s.dim != 3) top.fail("dimension", "must be 2 or 3");
   read_geometry(top.map("geometry"), s);

@@ -1,6 +1,8 @@
 #include "yaml_fields.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "perinom/core/error.hpp"
 
@@ -20,6 +22,13 @@ Fields::Fields(const YAML::Node& node, std::string path, std::string source)
   // yaml-cpp keeps the first of two equal keys and drops the second silently.
   std::set<std::string> seen;
   for (const auto& kv : node_) {
+    // YAML allows a list or a mapping as a key ("[a, b]: c", "? [a, b]"); a scene does not.
+    if (!kv.first.IsScalar()) {
+      YAML::Emitter flow;
+      flow << YAML::Flow << kv.first;
+      throw InputError(where(source_, kv.first) + key(flow.c_str()) +
+                       ": a key must be a plain name, not a list or a mapping");
+    }
     const std::string k = kv.first.as<std::string>();
     if (!seen.insert(k).second)
       throw InputError(where(source_, kv.first) + key(k) + ": key given twice");
@@ -135,6 +144,55 @@ void Fields::finish() const {
   }
 }
 
+void require_closed_quotes(const std::string& text, const std::string& source) {
+  std::istringstream in(text);
+  char open = 0;  // the quote of the string being read, or 0
+  int open_line = 0, number = 0, flow = 0, block_indent = -1;
+  for (std::string l; std::getline(in, l);) {
+    ++number;
+    const std::size_t first = l.find_first_not_of(" \t\r");
+    const int indent = first == std::string::npos ? -1 : static_cast<int>(first);
+    // The lines of a block scalar (key: | or key: >) are text: quotes in them mean nothing.
+    if (open == 0 && block_indent >= 0) {
+      if (indent < 0 || indent > block_indent) continue;
+      block_indent = -1;
+    }
+    bool start = true;  // where a scalar, and so a quoted string, may begin
+    for (std::size_t i = 0; i < l.size(); ++i) {
+      const char c = l[i];
+      const bool space_after = i + 1 == l.size() || l[i + 1] == ' ' || l[i + 1] == '\t' || l[i + 1] == '\r';
+      if (open == '"') {
+        if (c == '\\') ++i;
+        else if (c == '"') open = 0, start = false;
+        continue;
+      }
+      if (open == '\'') {
+        if (c == '\'' && i + 1 < l.size() && l[i + 1] == '\'') ++i;
+        else if (c == '\'') open = 0, start = false;
+        continue;
+      }
+      if (c == ' ' || c == '\t' || c == '\r') continue;
+      if (c == '#' && (i == 0 || l[i - 1] == ' ' || l[i - 1] == '\t')) break;
+      if (start && (c == '"' || c == '\'')) {
+        open = c, open_line = number;
+        continue;
+      }
+      if (start && (c == '|' || c == '>')) {
+        block_indent = indent;
+        break;
+      }
+      if (c == '[' || c == '{') ++flow, start = true;
+      else if (c == ']' || c == '}') flow = std::max(0, flow - 1), start = false;
+      else if (c == ',') start = flow > 0;
+      else if (c == ':' || c == '-' || c == '?') start = space_after;
+      else start = false;
+    }
+  }
+  if (open != 0)
+    throw InputError(source + ":" + std::to_string(open_line) + ": not valid YAML: the " +
+                     (open == '"' ? "double" : "single") + "-quoted string that starts on this line is never closed");
+}
+
 void apply_override(YAML::Node& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
@@ -170,13 +228,22 @@ void set_path(YAML::Node& root, const std::vector<std::string>& parts, const YAM
       throw InputError("--set " + path + ": '" + part + "' is a key inside something that is not a mapping");
     if (index && !cur.IsSequence())
       throw InputError("--set " + path + ": '" + part + "' indexes something that is not a list");
-    if (index && std::stoul(part) >= cur.size())
-      throw InputError("--set " + path + ": list index " + part + " is out of range");
+    // Compared as text first: an index of twenty digits does not fit any integer type.
+    std::size_t at = 0;
+    if (index) {
+      const std::string size = std::to_string(cur.size());
+      const std::size_t lead = std::min(part.find_first_not_of('0'), part.size() - 1);
+      const std::string digits = part.substr(lead);
+      if (digits.size() > size.size() || (digits.size() == size.size() && digits >= size))
+        throw InputError("--set " + path + ": list index " + part + " is out of range (the list has " + size +
+                         " items)");
+      at = std::stoul(digits);
+    }
     if (p + 1 == parts.size()) {
-      if (index) cur[std::stoul(part)] = value;
+      if (index) cur[at] = value;
       else cur[part] = value;
     } else {
-      YAML::Node next = index ? cur[std::stoul(part)] : cur[part];
+      YAML::Node next = index ? cur[at] : cur[part];
       cur.reset(next);
     }
   }

@@ -55,6 +55,10 @@ void set_path(YAML::Node& root, const std::vector<std::string>& parts, const YAM
 /// Applies one "dotted.key=value" override to the YAML tree.
 void apply_override(YAML::Node& root, const std::string& assignment);
 
+/// yaml-cpp reads a quoted string that is never closed to the end of the file, taking every
+/// key below it as text. Throws an InputError naming the line where such a quote opens.
+void require_closed_quotes(const std::string& text, const std::string& source);
+
 /// "file:line: " for a node (line counted from 1), or "file: " when unknown.
 std::string where(const std::string& source, const YAML::Node& node);
 

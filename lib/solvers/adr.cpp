@@ -50,18 +50,21 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     parallel_for(n, [&](std::size_t k) { f[k] = (forced ? loading.force_at(s, k) : 0.0) - fint_[k]; });
     loading.reduce(f.data());
     const double fnorm = norm(f);
-    if (!std::isfinite(fnorm)) {
-      u = last_good_;
-      throw SolveError("ADR: the internal force became NaN or Inf at iteration " +
-                       std::to_string(rep.iterations) + " (last finite state kept)");
-    }
+    if (!std::isfinite(fnorm) || !std::isfinite(reaction2))
+      throw DivergenceError("ADR: the internal force became NaN or Inf at iteration " +
+                            std::to_string(rep.iterations + 1), rep.iterations + 1);
     const double load = std::max(force_norm, std::sqrt(reaction2));
     return load > 0.0 ? fnorm / load : fnorm;
   };
 
   loading.impose(s, u.data());
   std::fill(v.begin(), v.end(), 0.0);
-  double r = residual(), du = 1.0, c = 0.0;
+  double r = 0.0, du = 1.0, c = 0.0;
+  try {
+    r = residual();
+  } catch (const DivergenceError&) {
+    throw DivergenceError("ADR: the internal force of the starting state is NaN or Inf", rep.iterations);
+  }
   bool first = true, converged = false;
   while (rep.iterations < opt_.max_iterations) {
     // The seed's criterion (eq. 33) alone stops a solve that has barely moved; the
@@ -85,7 +88,9 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     }
     first = false;
     loading.zero_fixed(v.data());
+    // last_good_: the state of the previous iteration, the last one that passed the guard.
     const double du2 = parallel_sums<1>(n, [&](std::size_t k, double* acc) {
+      last_good_[k] = u[k];
       u[k] += v[k];
       acc[0] += v[k] * v[k];
     })[0];
@@ -93,15 +98,27 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     const double un = norm(u);
     du = un > 0.0 ? std::sqrt(du2) / un : std::sqrt(du2);
     f_old.swap(f);
-    if (rep.iterations % 100 == 0) last_good_ = u;
-    r = residual();
+    try {
+      // The guard: the force, the change and the damping (the history row) are finite,
+      // and the snapshot writer refuses a non-finite field.
+      r = residual();
+      if (!std::isfinite(du) || !std::isfinite(c))
+        throw DivergenceError("ADR: the displacement became NaN or Inf at iteration " +
+                              std::to_string(rep.iterations + 1), rep.iterations + 1);
+      observe(rep.iterations + 1, s, u);
+    } catch (const SolveError& e) {
+      u.swap(last_good_);
+      const auto* d = dynamic_cast<const DivergenceError*>(&e);
+      throw DivergenceError(std::string(e.what()) + "; the last good state is iteration " +
+                                std::to_string(rep.iterations),
+                            d ? d->step : rep.iterations + 1);
+    }
     if (after_iteration) after_iteration();
     ++rep.iterations;
     if (rep.iterations % opt_.history_every == 0) {
       rep.history.add({double(rep.iterations), s, r, du, c});
       add_reactions(loading, s, rep.history);
     }
-    observe(rep.iterations, s, u);
     if (progress_ && rep.iterations % 50 == 0) {
       sample_.iteration = rep.iterations;
       sample_.residual = r;
@@ -126,6 +143,11 @@ SolveReport solve_adr(Model& model, const Loading& loading, const AdrOptions& op
       rep.converged = adr.balance(loading, static_cast<double>(step) / opt.load_steps, u, rep, observe);
       if (!rep.converged) break;
     }
+  } catch (const DivergenceError& e) {
+    rep.converged = false;
+    rep.diverged = true;
+    rep.diverged_at = e.step;
+    rep.failure = e.what();
   } catch (const SolveError& e) {
     rep.converged = false;
     rep.failure = e.what();

@@ -110,6 +110,7 @@ SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& 
         };
         const SolveReport nr = solve_newton(model, stage.loading, nopt, u, progress);
         rep.iterations += nr.iterations;
+        if (nr.diverged) throw DivergenceError(where(stage, int(k), int(nr.history.rows())) + ": " + nr.failure, done + nr.diverged_at);
         if (!nr.failure.empty()) throw SolveError(where(stage, int(k), int(nr.history.rows())) + ": " + nr.failure);
         done += stage.steps;
         continue;
@@ -137,9 +138,17 @@ SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& 
         SolveReport balance;
         const std::function<void()> commit_each = [plastic] { plastic->commit(); };
         for (;;) {
-          const bool ok = adr->balance(stage.loading, r.load_factor, u, balance, {},
-                                       opt.scheme == LoadPathScheme::every_iteration && plastic ? commit_each
-                                                                                                : std::function<void()>{});
+          bool ok = false;
+          try {
+            ok = adr->balance(stage.loading, r.load_factor, u, balance, {},
+                              opt.scheme == LoadPathScheme::every_iteration && plastic ? commit_each
+                                                                                       : std::function<void()>{});
+          } catch (const DivergenceError& e) {
+            u = u_prev;  // the last good state: the previous load step's
+            throw DivergenceError(where(stage, int(k), step) + ": " + e.what() + " (the last good state is load step " +
+                                      std::to_string(done - 1) + ")",
+                                  done);
+          }
           ++r.rounds;
           r.iterations = balance.iterations;
           r.residual = balance.residual;
@@ -161,6 +170,11 @@ SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& 
       }
     }
     rep.converged = true;
+  } catch (const DivergenceError& e) {
+    rep.converged = false;
+    rep.diverged = true;
+    rep.diverged_at = e.step;
+    rep.failure = e.what();
   } catch (const SolveError& e) {
     rep.converged = false;
     rep.failure = e.what();

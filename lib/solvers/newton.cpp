@@ -119,7 +119,9 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
   ProgressSample sample;
   sample.limit = 0;  // Newton's iteration count is no measure of the time left
   sample.load_steps = opt.load_steps;
+  std::vector<double> u_start(n);  // the last state that passed the guard
   for (int step = 1; step <= opt.load_steps; ++step) {
+    u_start = u;
     data.s = static_cast<double>(step) / opt.load_steps;
     // Scale the residual by its size at the start of the step, so the tolerance is relative.
     system.residual(z.data(), data.s, R.data());
@@ -146,7 +148,18 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
     R.resize(u.size());  // the constraint rows are not forces
     loading.zero_fixed(R.data());
     const double load = system.load_norm(u.data(), data.s);
-    rep.residual = load > 0.0 ? norm(R) / load : norm(R);
+    const double relative = load > 0.0 ? norm(R) / load : norm(R);
+    if (!std::isfinite(relative) || !std::isfinite(norm(u))) {
+      // The guard: a state or residual that is not finite is never kept, nor its row.
+      std::copy(u_start.begin(), u_start.end(), u.begin());
+      rep.diverged = true;
+      rep.diverged_at = step;
+      rep.failure = "Newton: the residual became NaN or Inf in load step " + std::to_string(step) +
+                    " (KINSOL flag " + KINGetReturnFlagName(flag) + "); the last good state is load step " +
+                    std::to_string(step - 1);
+      break;
+    }
+    rep.residual = relative;
     R.resize(n);
     rep.history.add({double(step), data.s, double(iterations), rep.residual});
     if (loading.has_supports()) {

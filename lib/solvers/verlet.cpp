@@ -1,6 +1,7 @@
 #include "perinom/solvers/verlet.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -31,109 +32,122 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   auto inv_mass = model.lumped_mass();
   for (auto& m : inv_mass) m = 1.0 / m;
   const double* fext = loading.force.empty() ? nullptr : loading.force.data();
-  std::vector<double> a(n), fint(n), u_old(n), last_good(u);
+  // u_old, v_old: the state of the previous step, the last one that passed the guard.
+  std::vector<double> a(n), fint(n), u_old(u), v_old(v);
   std::vector<double> fint_fixed(loading.fixed.size());  // f_int at the constrained dofs, before the step
   rep.history.columns = {"step", "time", "kinetic_energy", "strain_energy", "external_work",
                          "total_energy"};
   const int dpp = model.dofs_per_particle();
+  const std::size_t supports = loading.support_names.size() * dpp;
   for (const auto& c : loading.reaction_columns(dpp)) rep.history.columns.push_back(c);
   rep.history.reserve(opt.steps / std::max<std::int64_t>(opt.history_every, 1) + 2);
   auto factor = [&](double t) { return opt.ramp_time > 0.0 ? std::min(1.0, t / opt.ramp_time) : 1.0; };
   double work = 0.0;  // external work, trapezoidal in time
-  auto accelerate = [&](double t) {
+  auto diverged = [&](std::int64_t step, const std::string& what) {
+    return DivergenceError("Verlet: " + what + " became NaN or Inf at step " + std::to_string(step), step);
+  };
+  // The guard, part 1: the acceleration (and so the internal force) is finite. The constrained
+  // dofs' forces move to the free dofs they couple to (Galerkin supports), then a = f / m.
+  auto accelerate = [&](std::int64_t step, double t) {
     model.internal_force(u.data(), fint.data());
     const double s = factor(t);
-    // The constrained dofs' forces move to the free dofs they couple to (Galerkin), then a = f / m.
     parallel_for(n, [&](std::size_t k) { a[k] = (fext ? s * fext[k] : 0.0) - fint[k]; });
     loading.reduce(a.data());
-    const double a2 = parallel_sums<1>(n, [&](std::size_t k, double* acc) {
+    const auto [a2, u2, v2] = parallel_sums<3>(n, [&](std::size_t k, double* acc) {
       a[k] *= inv_mass[k];
-      acc[0] += a[k] * a[k];
-    })[0];
-    if (!std::isfinite(a2)) {
-      u = last_good;
-      throw SolveError("Verlet: the internal force became NaN or Inf at step " +
-                       std::to_string(rep.iterations) + " (last finite state kept)");
-    }
+      acc[0] += a[k] * a[k], acc[1] += u[k] * u[k], acc[2] += v[k] * v[k];
+    });
+    if (!std::isfinite(a2 + u2 + v2)) throw diverged(step, "the internal force or the state");
   };
-  // The energy balance: E - E0 - W against the largest energy and work seen so far.
+  // Part 2: the history row (energies, then the supports' static reactions), checked before
+  // it is kept; and the energy balance E - E0 - W against the largest energy and work so far.
   double e0 = 0.0, e_max = 0.0, w_max = 0.0;
-  auto record = [&](std::int64_t step, double t) {
+  std::vector<double> row;
+  auto energies = [&](std::int64_t step, double t) {
     const double kin = parallel_sums<1>(n, [&](std::size_t k, double* acc) {
       acc[0] += 0.5 * v[k] * v[k] / inv_mass[k];
     })[0];
     const double strain = model.energy(u.data());
-    rep.history.add({double(step), t, kin, strain, work, kin + strain - work});
-    if (loading.has_supports()) {
-      // fint is the force at this state (accelerate ran on it): the supports' static reaction.
-      const std::size_t at = rep.history.values.size();
-      rep.history.values.resize(at + loading.support_names.size() * dpp);
-      loading.reactions(fint.data(), factor(t), dpp, rep.history.values.data() + at);
-    }
+    row.assign({double(step), t, kin, strain, work, kin + strain - work});
+    row.resize(6 + supports);
+    // fint is the force at this state (accelerate ran on it): the supports' static reaction.
+    if (supports > 0) loading.reactions(fint.data(), factor(t), dpp, row.data() + 6);
+    for (const double x : row)
+      if (!std::isfinite(x)) throw diverged(step, "an energy or a reaction");
     if (step == 0) e0 = kin + strain;
     e_max = std::max(e_max, kin + strain), w_max = std::max(w_max, std::abs(work));
     const double defect = std::abs(kin + strain - e0 - work);
     const double bound = opt.energy_tolerance * std::max(e_max, w_max) + opt.energy_floor;
-    if (opt.energy_check && (defect > bound || !std::isfinite(defect))) {
-      u = last_good;
+    if (opt.energy_check && defect > bound) {
       char what[640];
       std::snprintf(what, sizeof what,
                     "Verlet: the energy balance failed at step %lld (t = %.4e s): kinetic + strain energy "
                     "%.4e J against %.4e J initial plus %.4e J of external work, off by %.3e J, more than %g times "
                     "the largest energy or work so far (the discrete problem gains energy: an unstable formulation "
-                    "or time step; solver.energy_check: false turns this guard off; the state kept is that of the last "
-                    "earlier step that is a multiple of 100)",
+                    "or time step; solver.energy_check: false turns this guard off)",
                     static_cast<long long>(step), t, kin + strain, e0, work, defect, opt.energy_tolerance);
       throw SolveError(what);
     }
   };
+  auto record = [&]() { rep.history.values.insert(rep.history.values.end(), row.begin(), row.end()); };
   double t = 0.0;
   loading.impose(factor(t), u.data());
-  accelerate(t);
+  accelerate(0, t);
   // Galerkin supports whose targets move (a prescribed displacement): their multipliers.
   const bool moving_galerkin =
-      loading.galerkin() && std::any_of(loading.value.begin(), loading.value.end(), [](double v) { return v != 0.0; });
+      loading.galerkin() && std::any_of(loading.value.begin(), loading.value.end(), [](double x) { return x != 0.0; });
   std::vector<double> lambda(moving_galerkin ? loading.fixed.size() : 0), lambda_old(lambda.size());
   if (moving_galerkin) loading.multipliers(fint.data(), factor(t), lambda_old.data());
-  record(0, t);
+  energies(0, t);
+  record();
   ProgressSample sample;
   sample.limit = opt.steps;
   for (std::int64_t step = 1; step <= opt.steps; ++step) {
     parallel_for(n, [&](std::size_t k) {
+      v_old[k] = v[k];
       v[k] += 0.5 * dt * a[k];
       u_old[k] = u[k];
       u[k] += dt * v[k];
     });
+    const double t_old = t;
     t += dt;
-    loading.impose(factor(t), u.data());
-    const double s_mid = 0.5 * (factor(t) + factor(t - dt));
-    if (fext)
-      work += s_mid * parallel_sums<1>(n, [&](std::size_t k, double* acc) { acc[0] += fext[k] * (u[k] - u_old[k]); })[0];
-    for (std::size_t k = 0; k < loading.fixed.size(); ++k) fint_fixed[k] = fint[loading.fixed[k]];
-    accelerate(t);
-    // The constraints' work. Galerkin supports act through their multipliers on E u = t, so
-    // they work only as their targets move: lambda . dt (trapezoidal), zero for fixed ones.
-    // Otherwise the load on a constrained dof is replaced by its reaction, and the work there
-    // is f_int . du (trapezoidal), zero for supports that do not move.
-    if (moving_galerkin) {
-      const double ds = factor(t) - factor(t - dt);
-      loading.multipliers(fint.data(), factor(t), lambda.data());
-      for (std::size_t k = 0; k < loading.fixed.size(); ++k) work += 0.5 * (lambda_old[k] + lambda[k]) * ds * loading.value[k];
-      std::swap(lambda, lambda_old);
+    try {
+      loading.impose(factor(t), u.data());
+      const double s_mid = 0.5 * (factor(t) + factor(t - dt));
+      if (fext)
+        work += s_mid * parallel_sums<1>(n, [&](std::size_t k, double* acc) { acc[0] += fext[k] * (u[k] - u_old[k]); })[0];
+      for (std::size_t k = 0; k < loading.fixed.size(); ++k) fint_fixed[k] = fint[loading.fixed[k]];
+      accelerate(step, t);
+      // The constraints' work. Galerkin supports act through their multipliers on E u = t, so
+      // they work only as their targets move: lambda . dt (trapezoidal), zero for fixed ones.
+      // Otherwise the load on a constrained dof is replaced by its reaction, and the work
+      // there is f_int . du (trapezoidal), zero for supports that do not move.
+      if (moving_galerkin) {
+        const double ds = factor(t) - factor(t - dt);
+        loading.multipliers(fint.data(), factor(t), lambda.data());
+        for (std::size_t k = 0; k < loading.fixed.size(); ++k) work += 0.5 * (lambda_old[k] + lambda[k]) * ds * loading.value[k];
+        std::swap(lambda, lambda_old);
+      }
+      for (std::size_t k = 0; k < loading.fixed.size() && !loading.galerkin(); ++k) {
+        const std::int64_t dof = loading.fixed[k];
+        const double du = u[dof] - u_old[dof];
+        if (du != 0.0) work += (0.5 * (fint_fixed[k] + fint[dof]) - (fext ? s_mid * fext[dof] : 0.0)) * du;
+      }
+      parallel_for(n, [&](std::size_t k) { v[k] += 0.5 * dt * a[k]; });
+      loading.zero_fixed(v.data());
+      const bool keep_row = step % opt.history_every == 0;
+      if (keep_row) energies(step, t);
+      observe(step, t, u);  // part 3: the snapshot writer refuses a non-finite field
+      if (keep_row) record();
+    } catch (const SolveError& e) {
+      u.swap(u_old), v.swap(v_old);
+      rep.end_time = t_old;  // rep.iterations is still step - 1
+      const auto* d = dynamic_cast<const DivergenceError*>(&e);
+      throw DivergenceError(std::string(e.what()) + "; the last good state is step " + std::to_string(step - 1),
+                            d ? d->step : step);
     }
-    for (std::size_t k = 0; k < loading.fixed.size() && !loading.galerkin(); ++k) {
-      const std::int64_t dof = loading.fixed[k];
-      const double du = u[dof] - u_old[dof];
-      if (du != 0.0) work += (0.5 * (fint_fixed[k] + fint[dof]) - (fext ? s_mid * fext[dof] : 0.0)) * du;
-    }
-    parallel_for(n, [&](std::size_t k) { v[k] += 0.5 * dt * a[k]; });
-    loading.zero_fixed(v.data());
     rep.iterations = step;
     rep.end_time = t;
-    // Recorded first, so that a state the energy balance rejects is never kept as good.
-    if (step % opt.history_every == 0) record(step, t);
-    if (step % 100 == 0) last_good = u;
-    observe(step, t, u);
     if (progress && step % 50 == 0) {
       sample.iteration = step;
       sample.time = t;
@@ -152,6 +166,12 @@ SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptio
   SolveReport rep;
   try {
     integrate(model, loading, opt, u, v, progress, observe, rep);
+  } catch (const DivergenceError& e) {
+    if (progress) progress->finish();
+    rep.converged = false;
+    rep.diverged = true;
+    rep.diverged_at = e.step;
+    rep.failure = e.what();
   } catch (const SolveError& e) {
     if (progress) progress->finish();
     rep.converged = false;

@@ -3,77 +3,9 @@
 // Each test writes a tiny scene (10 x 10 particles) into its own temporary folder and
 // runs the real binary (PERINOM_EXE, set by tests/CMakeLists.txt), so the whole file takes
 // well under a second per case.
-#include <algorithm>
+#include "../support/cli.hpp"
 
-#include "../support/cli_run.hpp"
-
-namespace {
-
-/// A valid 2-D scene: 10 x 10 particles, bottom fixed, pressure on top, two probes.
-const std::string tiny_scene = R"(name: tiny
-dimension: 2
-geometry:
-  box: {min: [0.0, 0.0], max: [0.01, 0.01]}
-discretization:
-  dx: 0.001
-  horizon: {ratio: 3.015}
-material:
-  type: linear_elastic
-  E: 1.0e9
-  nu: 0.25
-  density: 1000.0
-boundary:
-  - region: bottom
-    fix: [x, y]
-  - region: top
-    pressure: 1.0e6
-solver:
-  type: adr
-  tolerance: 1.0e-6
-  displacement_tolerance: 1.0e-6
-probes:
-  - name: top_uy
-    point: [0.005, 0.01]
-    component: y
-  - name: mid
-    line: {from: [0.005, 0.0], to: [0.005, 0.01]}
-    field: stress
-    component: yy
-)";
-
-/// The scene with the one occurrence of `from` replaced by `to`.
-std::string with(const std::string& scene, const std::string& from, const std::string& to) {
-  const auto at = scene.find(from);
-  REQUIRE(at != std::string::npos);
-  REQUIRE(scene.find(from, at + 1) == std::string::npos);
-  return scene.substr(0, at) + to + scene.substr(at + from.size());
-}
-
-/// The 1-based line of the first occurrence of `text` in the scene.
-int line_of(const std::string& scene, const std::string& text) {
-  const auto at = scene.find(text);
-  REQUIRE(at != std::string::npos);
-  return 1 + static_cast<int>(std::count(scene.begin(), scene.begin() + at, '\n'));
-}
-
-/// Writes the scene and checks that both `check` and `run` reject it with the needles.
-void require_rejected(const std::string& scene, std::initializer_list<std::string> needles,
-                      const std::string& extra = "") {
-  ScratchDir dir;
-  std::ofstream(dir.path / "scene.yaml") << scene;
-  SECTION("perinom check") { require_one_clear_error(perinom(dir, "check scene.yaml " + extra), needles); }
-  SECTION("perinom run") {
-    require_one_clear_error(perinom(dir, "run scene.yaml --out out " + extra), needles);
-    CHECK_FALSE(fs::exists(dir.path / "out" / "summary.json"));
-  }
-}
-
-/// "scene.yaml:N: key" for the line of `text` in the scene.
-std::string at_line(const std::string& scene, const std::string& text, const std::string& key) {
-  return "scene.yaml:" + std::to_string(line_of(scene, text)) + ": " + key;
-}
-
-}  // namespace
+using namespace cli_test;
 
 TEST_CASE("the tiny scene used below is valid", "[cli]") {
   ScratchDir dir;

@@ -8,6 +8,8 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -104,4 +106,79 @@ TEST_CASE("a solve that blows up exits 3 and writes its last good state and summ
   REQUIRE(u != nullptr);
   for (vtkIdType i = 0; i < u->GetNumberOfTuples(); ++i)
     for (int c = 0; c < 3; ++c) REQUIRE(std::isfinite(u->GetComponent(i, c)));
+}
+
+namespace {
+
+/// The number after "key": in a JSON text (the first occurrence).
+double json_number(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\": ");
+  REQUIRE(at != std::string::npos);
+  return std::stod(json.substr(at + key.size() + 4));
+}
+
+/// Whether a CSV or JSON text holds a non-finite number: a word nan, inf or infinity (any
+/// case, any sign) outside double-quoted strings (a JSON message may say "NaN or Inf").
+bool has_nonfinite_text(const std::string& text) {
+  bool quoted = false;
+  std::string word;
+  for (const char c : text + "\n") {
+    if (c == '"') quoted = !quoted;
+    if (!quoted && std::isalpha(static_cast<unsigned char>(c))) {
+      word += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      continue;
+    }
+    if (word == "nan" || word == "inf" || word == "infinity") return true;
+    word.clear();
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("Verlet at three times its stable step: exit 3, no NaN or Inf in any file, the step in the summary", "[cli]") {
+  const fs::path d = scratch("diverged");
+  REQUIRE(run_perinom(d, "run scene.yaml --out probe --set solver.steps=1") == 0);
+  const double stable = json_number(slurp(d / "probe" / "summary.json"), "stable_time_step");
+  std::ostringstream dt;
+  dt.precision(17);
+  dt << 3.0 * stable;
+  // Snapshots (VTK and CSV) and history rows every 5 steps, up to the last one before the guard.
+  REQUIRE(run_perinom(d, "run scene.yaml --out out --set solver.dt=" + dt.str() +
+                             " --set solver.steps=100000 --set solver.history_every=5 --set output.vtk_every=5 "
+                             "--set output.csv=true") == 3);
+  const fs::path out = d / "out";
+  const std::string summary = slurp(out / "summary.json");
+  INFO(summary);
+  CHECK(summary.find("\"status\": \"diverged\"") != std::string::npos);
+  const double failed = json_number(summary, "diverged_at"), last = json_number(summary, "last_good");
+  CHECK(failed > 10);
+  CHECK(last == failed - 1);
+  CHECK(json_number(summary, "end_time") == Approx(last * 3.0 * stable).epsilon(1e-9));
+  int vtu = 0;
+  for (const auto& e : fs::directory_iterator(out)) {
+    const std::string name = e.path().filename().string();
+    INFO(name);
+    CHECK(e.path().extension() != ".tmp");
+    if (e.path().extension() != ".vtu") {
+      CHECK_FALSE(has_nonfinite_text(slurp(e.path())));
+      continue;
+    }
+    ++vtu;
+    auto reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
+    reader->SetFileName(e.path().c_str());
+    reader->Update();
+    vtkPointData* pd = reader->GetOutput()->GetPointData();
+    REQUIRE(pd->GetNumberOfArrays() > 0);
+    for (int a = 0; a < pd->GetNumberOfArrays(); ++a) {
+      vtkDataArray* arr = pd->GetArray(a);
+      for (vtkIdType i = 0; i < arr->GetNumberOfTuples(); ++i)
+        for (int c = 0; c < arr->GetNumberOfComponents(); ++c) REQUIRE(std::isfinite(arr->GetComponent(i, c)));
+    }
+  }
+  CHECK(vtu > 2);
+  // The history's last row is at or before the last good step.
+  const std::string history = slurp(out / "history.csv");
+  const auto last_line = history.substr(history.rfind('\n', history.size() - 2) + 1);
+  CHECK(std::stod(last_line) <= last);
 }

@@ -173,7 +173,8 @@ TEST_CASE("CsvWriter writes full-precision rows that read back exactly", "[io]")
     for (const auto& r : rows) csv.row(r);
     CHECK_THROWS_AS(csv.row({1.0}), std::invalid_argument);
     CHECK_FALSE(fs::exists(path));  // still under .tmp until closed
-  }  // the destructor closes
+    csv.close();
+  }
   REQUIRE(fs::exists(path));
   REQUIRE_FALSE(any_tmp_file(dir.path));
 
@@ -192,6 +193,19 @@ TEST_CASE("CsvWriter writes full-precision rows that read back exactly", "[io]")
   }
   CHECK_FALSE(std::getline(in, line));
   CHECK_THROWS_AS(perinom::io::CsvWriter(dir / "missing/h.csv"), perinom::InputError);
+}
+
+TEST_CASE("a CsvWriter never closed (an exception cut it short) leaves neither the file nor its .tmp", "[io]") {
+  ScratchDir dir;
+  const std::string path = dir / "history.csv";
+  {
+    perinom::io::CsvWriter csv(path);
+    csv.header({"a"});
+    csv.row({1.0});
+    REQUIRE(any_tmp_file(dir.path));
+  }
+  CHECK_FALSE(fs::exists(path));
+  CHECK_FALSE(any_tmp_file(dir.path));
 }
 
 TEST_CASE("Json dumps nested objects and arrays, escapes strings, writes NaN as null", "[io]") {

@@ -46,18 +46,9 @@ and matplotlib (Debian: python3-numpy python3-matplotlib). Runs single-threaded.
 import os
 import sys
 
-try:
-    import numpy as np
-except ImportError:  # e.g. a pyenv python3 first on PATH: fall back to Debian's, which has numpy
-    if os.path.exists("/usr/bin/python3") and os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3"):
-        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
-    raise
-
-import argparse
-import shutil
-import subprocess
-import tempfile
-import time
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ccx_common as cc   # the shared helpers (it re-runs this under /usr/bin/python3 without numpy)
+import numpy as np
 
 # ---- problem data (SI) ------------------------------------------------------------------
 L, H = 0.1, 0.01               # length (x) and depth (y), m; thickness 1 m
@@ -69,10 +60,6 @@ PY = TY * H                    # total tip force, N per m of thickness (-1e4)
 YC = H / 2                     # centre line
 H_LIST = [5e-3, 2.5e-3, 1.25e-3, 0.625e-3, 0.3125e-3, 0.15625e-3]   # element sides, m (H/h: 2 ... 64)
 LINE_STEP = 0.3125e-3          # spacing of the centre-line output, m
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-ENV = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_EQUATION_SOLVER="1",
-           CCX_NPROC_RESULTS="1", CCX_NPROC_STIFFNESS="1")
 
 # beam theory, for comparison (plane stress: the beam modulus is E)
 I_SEC = H ** 3 / 12                           # second moment of area per m of thickness, m^4/m
@@ -99,36 +86,8 @@ def mesh(h, work):
     """Returns node ids, coordinates (n x 2) and 8-node elements (m x 8, node ids, ccx order)."""
     nx, ny = round(L / h), round(H / h)
     assert ny % 2 == 0, "an even count across, so that the centre line has corner nodes"
-    geo = os.path.join(work, "beam.geo")
-    msh = os.path.join(work, "beam.msh")
-    with open(geo, "w") as f:
-        f.write(GEO.format(L=L, H=H, nx1=nx + 1, ny1=ny + 1))
-    subprocess.run(["gmsh", "-2", geo, "-o", msh, "-format", "msh22", "-v", "1"],
-                   check=True, env=ENV, stdout=subprocess.DEVNULL)
-    lines = open(msh).read().split("\n")
-    i = lines.index("$Nodes")
-    n = int(lines[i + 1])
-    ids = np.empty(n, dtype=np.int64)
-    xy = np.empty((n, 2))
-    for k in range(n):
-        t = lines[i + 2 + k].split()
-        ids[k] = int(t[0])
-        xy[k] = float(t[1]), float(t[2])
-    i = lines.index("$Elements")
-    m = int(lines[i + 1])
-    elems = []
-    for k in range(m):
-        t = [int(v) for v in lines[i + 2 + k].split()]
-        if t[1] == 16:  # 8-node quad; gmsh and ccx both number corners 1-4, then mid-edges 12, 23, 34, 41
-            elems.append(t[3 + t[2]:])
-    elems = np.array(elems, dtype=np.int64)
+    ids, xy, elems = cc.quad8_mesh(cc.gmsh(GEO.format(L=L, H=H, nx1=nx + 1, ny1=ny + 1), work, "beam"))
     assert len(elems) == nx * ny, (len(elems), nx, ny)
-    # ccx wants counter-clockwise elements in the x-y plane
-    pos = {nid: k for k, nid in enumerate(ids)}
-    c = np.array([[xy[pos[v]] for v in e[:4]] for e in elems])
-    area2 = sum(c[:, a, 0] * c[:, (a + 1) % 4, 1] - c[:, (a + 1) % 4, 0] * c[:, a, 1] for a in range(4))
-    cw = area2 < 0
-    elems[cw] = elems[cw][:, [0, 3, 2, 1, 7, 6, 5, 4]]
     # gmsh leaves round-off of order 1e-14 m on the structured grid; snap to the exact
     # half-element grid (the mesh is structured, so every node lies on it)
     snapped = np.round(xy / (h / 2)) * (h / 2)
@@ -137,19 +96,11 @@ def mesh(h, work):
 
 
 # ---- step 2: CalculiX input -------------------------------------------------------------
-def num(v):
-    """A number for the ccx input. ccx reads a number from its first 20 characters (Fortran
-    f20.0): a longer one whose first 20 characters still read as a number is silently cut.
-    Python's shortest repr can be longer (a node at y = 6.135769156722633e-05 m was read as
-    6.1357 m), so write 14 significant digits, which fit in 20 characters with the sign."""
-    return f"{v:.13e}"
-
-
 def tip_weights(ids, xy, elems, h):
     """Consistent nodal weights {node: w} of a unit uniform traction on the edge x = L
     (sum w = edge length): l/6 at the ends and 2 l/3 at the middle of each element edge."""
     tol = 1e-6 * h
-    pos = {nid: k for k, nid in enumerate(ids)}
+    pos = cc.node_index(ids)
     w = {}
     nedge = 0
     for e in elems:
@@ -177,20 +128,15 @@ def write_inp(path, ids, xy, elems, h, w, etype="CPE8", thickness=1.0):
     assert abs(sum(loads.values()) - PY * thickness) < 1e-9 * abs(PY * thickness)
     e_mod, nu = (E_PS, NU_PS) if etype == "CPE8" else (E, NU)
     with open(path, "w") as f:
-        f.write(f"*HEADING\ncantilever, tip shear, plane stress, {etype}\n*NODE, NSET=NALL\n")
-        for nid, (x, y) in zip(ids, xy):
-            f.write(f"{nid}, {num(x)}, {num(y)}, 0.0\n")
-        f.write(f"*ELEMENT, TYPE={etype}, ELSET=EALL\n")
-        for eid, e in enumerate(elems, start=1):
-            f.write(f"{eid}, " + ", ".join(str(v) for v in e) + "\n")
-        f.write("*NSET, NSET=NFIX\n" + "".join(f"{v},\n" for v in fixed))
-        f.write("*NSET, NSET=NOUT\n" + "".join(f"{v},\n" for v in sorted(set(tip) | set(center_line))))
-        f.write(f"*MATERIAL, NAME=M\n*ELASTIC\n{num(e_mod)}, {num(nu)}\n")
-        f.write(f"*SOLID SECTION, ELSET=EALL, MATERIAL=M\n{num(thickness)}\n")
+        cc.write_mesh(f, f"cantilever, tip shear, plane stress, {etype}", ids, xy, elems, etype)
+        cc.write_nset(f, "NFIX", fixed)
+        cc.write_nset(f, "NOUT", sorted(set(tip) | set(center_line)))
+        f.write(f"*MATERIAL, NAME=M\n*ELASTIC\n{cc.num(e_mod)}, {cc.num(nu)}\n")
+        f.write(f"*SOLID SECTION, ELSET=EALL, MATERIAL=M\n{cc.num(thickness)}\n")
         f.write("*BOUNDARY\nNFIX, 1, 2, 0.0\n")
         f.write("*STEP\n*STATIC\n*CLOAD\n")
         for nid in tip:
-            f.write(f"{nid}, 2, {num(loads[nid])}\n")
+            f.write(f"{nid}, 2, {cc.num(loads[nid])}\n")
         f.write("*NODE PRINT, NSET=NOUT\nU\n")
         f.write("*NODE PRINT, NSET=NFIX, TOTALS=ONLY\nRF\n")
         f.write("*END STEP\n")
@@ -198,44 +144,13 @@ def write_inp(path, ids, xy, elems, h, w, etype="CPE8", thickness=1.0):
 
 
 # ---- step 3: run ccx, read .dat ---------------------------------------------------------
-def parse_dat(path):
-    """Displacements {node: (ux, uy)} and the total reaction (fx, fy) of NFIX."""
-    u, total = {}, None
-    mode = None
-    for line in open(path):
-        s = line.strip()
-        if not s:
-            continue
-        if s.startswith("displacements"):
-            mode = "u"
-            continue
-        if s.startswith("total force"):
-            mode = "rf"
-            continue
-        if s[0].isalpha():
-            mode = None
-            continue
-        t = s.split()
-        if mode == "u":
-            u[int(t[0])] = (float(t[1]), float(t[2]))
-        elif mode == "rf":
-            total = (float(t[0]), float(t[1]))
-            mode = None
-    return u, total
-
-
 def solve(h, work, etype="CPE8", thickness=1.0):
     ids, xy, elems = mesh(h, work)
     w = tip_weights(ids, xy, elems, h)
     center_line = write_inp(os.path.join(work, "beam.inp"), ids, xy, elems, h, w, etype, thickness)
-    t0 = time.time()
-    r = subprocess.run(["ccx", "-i", "beam"], cwd=work, env=ENV,
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    seconds = time.time() - t0
-    if r.returncode != 0 or "ERROR" in r.stdout:
-        sys.exit(f"ccx failed for h = {h}:\n{r.stdout[-3000:]}")
-    u, total = parse_dat(os.path.join(work, "beam.dat"))
-    pos = {nid: k for k, nid in enumerate(ids)}
+    seconds = cc.run_ccx(work, "beam", f"h = {h}")
+    u, (total,) = cc.parse_dat(os.path.join(work, "beam.dat"))
+    pos = cc.node_index(ids)
     tc = [nid for nid in center_line if abs(xy[pos[nid], 0] - L) < 1e-6 * h]
     assert len(tc) == 1
     mean = sum(w[nid] * u[nid][1] for nid in w) / H
@@ -245,61 +160,22 @@ def solve(h, work, etype="CPE8", thickness=1.0):
                 seconds=seconds, reaction=total, centerline=cl)
 
 
-def richardson(f1, f2, f3, p=None):
-    """Richardson extrapolation of three values on meshes refined by 2 (coarse, medium, fine):
-    observed order p (unless given) and the limit."""
-    if p is None:
-        p = np.log((f1 - f2) / (f2 - f3)) / np.log(2.0)
-    return p, f3 + (f3 - f2) / (2 ** p - 1)
-
-
-def corner_exponent(nu):
-    """Williams' exponent lambda (u ~ r^lambda) of a 90-degree corner between a fixed and a free
-    edge: kappa sin^2(lambda pi/2) = (1 + kappa)^2/4 - lambda^2, plane stress
-    kappa = (3 - nu)/(1 + nu). The pollution it causes in a point displacement converges like
-    h^(2 lambda)."""
-    k = (3 - nu) / (1 + nu)
-    f = lambda l: k * np.sin(l * np.pi / 2) ** 2 - (1 + k) ** 2 / 4 + l ** 2
-    a, b = 0.5, 0.99
-    for _ in range(60):
-        m = (a + b) / 2
-        a, b = (a, m) if f(a) * f(m) <= 0 else (m, b)
-    return m
-
-
 # ---- step 4: run the meshes, check, write outputs ---------------------------------------
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--max-seconds", type=float, default=120.0,
-                    help="skip a mesh whose predicted ccx time (6 x the previous one) exceeds this (default 120)")
-    ap.add_argument("--keep", help="keep the work files in this folder")
-    ap.add_argument("--out", default=HERE, help="output folder (default: this script's)")
-    a = ap.parse_args()
-    for tool in ("gmsh", "ccx"):
-        if shutil.which(tool) is None:
-            sys.exit(f"{tool} not found: apt-get install gmsh calculix-ccx")
-    def run(h, etype="CPE8", thickness=1.0):
-        work = tempfile.mkdtemp(prefix=f"perinom_fem_cant2d_h{h * 1e3:g}mm_")
-        try:
-            return solve(h, work, etype, thickness)
-        finally:
-            if a.keep:
-                dst = os.path.join(a.keep, f"h_{h * 1e3:g}mm" + ("" if etype == "CPE8" else f"_{etype}_t{thickness:g}"))
-                shutil.rmtree(dst, ignore_errors=True)
-                shutil.copytree(work, dst)
-            shutil.rmtree(work)
+    a = cc.parse_args(__doc__, max_seconds=120.0)
 
-    results = []
-    for h in H_LIST:
-        if results and results[-1]["seconds"] * 6 > a.max_seconds:
-            print(f"h = {h * 1e3:g} mm skipped: the previous mesh took {results[-1]['seconds']:.1f} s")
-            break
-        r = run(h)
-        results.append(r)
+    def run(h, etype="CPE8", thickness=1.0):
+        name = f"h_{h * 1e3:g}mm" + ("" if etype == "CPE8" else f"_{etype}_t{thickness:g}")
+        return cc.in_work_folder(f"perinom_fem_cant2d_h{h * 1e3:g}mm_", a.keep, name,
+                                 lambda work: solve(h, work, etype, thickness))
+
+    def report(h, r):
         fx, fy = r["reaction"]
         print(f"h = {h * 1e3:8g} mm: {r['elements']:6d} elements {r['nodes']:7d} nodes  "
               f"tip-centre uy = {r['uy']:.7e} m  tip-edge mean uy = {r['mean']:.7e} m  "
               f"ccx {r['seconds']:6.1f} s  reaction ({fx:.3e}, {fy:.7e}) N/m", flush=True)
+
+    results = cc.mesh_series(H_LIST, 6, a.max_seconds, lambda h: f"h = {h * 1e3:g} mm", run, report)
 
     # sanity checks: equilibrium; the centre line (the neutral axis) does not stretch much
     for r in results:
@@ -324,12 +200,12 @@ def main():
                 assert abs(d) < 5e-5, "CPS8 with a thin section is not the plane-stress CPE8 model"
 
     out = {}
-    lam = corner_exponent(NU)
+    lam = cc.corner_exponent((3 - NU) / (1 + NU))   # plane stress
     for key in ("uy", "mean"):
         f = [r[key] for r in results]
-        p, lim = richardson(*f[-3:])
-        p_prev, lim_prev = richardson(*f[-4:-1]) if len(f) >= 4 else (np.nan, np.nan)
-        _, lim_theory = richardson(*f[-3:], p=2 * lam)
+        p, lim = cc.richardson(*f[-3:])
+        p_prev, lim_prev = cc.richardson(*f[-4:-1]) if len(f) >= 4 else (np.nan, np.nan)
+        _, lim_theory = cc.richardson(*f[-3:], p=2 * lam)
         out[key] = (p, lim, p_prev, lim_prev, f)
         name = {"uy": "tip-centre uy", "mean": "tip-edge mean uy"}[key]
         print(f"{name}: successive differences {', '.join(f'{d:.4e}' for d in np.diff(f))} m")
@@ -343,23 +219,16 @@ def main():
           f"FEM tip centre / Timoshenko = {lim / TIMO_TIP:.5f}, / Euler-Bernoulli = {lim / EB_TIP:.5f}")
 
     os.makedirs(a.out, exist_ok=True)
-    with open(os.path.join(a.out, "cantilever_2d.csv"), "w") as f:
-        f.write("h_m,elements,nodes,tip_center_uy_m,tip_edge_mean_uy_m,seconds\n")
-        for r in results:
-            f.write(f"{r['h']:.6g},{r['elements']},{r['nodes']},{r['uy']:.7e},{r['mean']:.7e},"
-                    f"{r['seconds']:.2f}\n")
-        f.write(f"0,0,0,{out['uy'][1]:.7e},{out['mean'][1]:.7e},0\n")   # h -> 0: Richardson
+    cc.write_csv(os.path.join(a.out, "cantilever_2d.csv"),
+                 "h_m,elements,nodes,tip_center_uy_m,tip_edge_mean_uy_m,seconds",
+                 [f"{cc.mesh_columns(r)},{r['uy']:.7e},{r['mean']:.7e},{r['seconds']:.2f}" for r in results]
+                 + [f"0,0,0,{out['uy'][1]:.7e},{out['mean'][1]:.7e},0"])   # h -> 0: Richardson
     cl = results[-1]["centerline"]
     step = max(1, round(LINE_STEP / (results[-1]["h"] / 2)))
-    with open(os.path.join(a.out, "cantilever_2d_centerline.csv"), "w") as f:
-        f.write("x_m,ux_m,uy_m\n")
-        for x, ux, uy in cl[::step]:
-            f.write(f"{x:.9g},{ux:.7e},{uy:.7e}\n")
+    cc.write_csv(os.path.join(a.out, "cantilever_2d_centerline.csv"), "x_m,ux_m,uy_m",
+                 [f"{x:.9g},{ux:.7e},{uy:.7e}" for x, ux, uy in cl[::step]])
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(9.6, 3.6), dpi=100)
+    fig, (a1, a2) = cc.figure(2)
     xs = np.linspace(0, L, 201)
     eb = lambda x: PY * x ** 2 * (3 * L - x) / (6 * E * I_SEC)   # Euler-Bernoulli deflection
     a1.plot(xs * 1e3, 0 * xs, "k--", lw=0.8, label="Euler-Bernoulli")
@@ -375,11 +244,7 @@ def main():
     a2.set(xlabel="h (mm)", ylabel="error (mm)", title="tip u_y convergence")
     a2.set_xticks(hs * 1e3, [f"{v * 1e3:g}" for v in hs])
     a2.minorticks_off()
-    for ax in (a1, a2):
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(a.out, "cantilever_2d_fem.png"))
+    cc.save_figure(fig, (a1, a2), os.path.join(a.out, "cantilever_2d_fem.png"))
     print("wrote cantilever_2d.csv, cantilever_2d_centerline.csv, cantilever_2d_fem.png in", a.out)
 
 

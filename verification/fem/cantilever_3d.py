@@ -63,18 +63,9 @@ and matplotlib (Debian: python3-numpy python3-matplotlib). Runs single-threaded.
 import os
 import sys
 
-try:
-    import numpy as np
-except ImportError:  # e.g. a pyenv python3 first on PATH: fall back to Debian's, which has numpy
-    if os.path.exists("/usr/bin/python3") and os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3"):
-        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
-    raise
-
-import argparse
-import shutil
-import subprocess
-import tempfile
-import time
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ccx_common as cc   # the shared helpers (it re-runs this under /usr/bin/python3 without numpy)
+import numpy as np
 
 # ---- problem data (SI) ------------------------------------------------------------------
 L, B, T = 0.1, 0.01, 0.01      # length (x), width (y), depth (z), m
@@ -83,10 +74,6 @@ TZ = -1e6                      # tip traction, z component, Pa
 PZ = TZ * B * T                # total tip force, N (-100)
 YC, ZC = B / 2, T / 2          # centre line
 H_LIST = [5e-3, 2.5e-3, 1.25e-3, 0.625e-3]   # element sides, m (across the section: 2, 4, 8, 16)
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-ENV = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_EQUATION_SOLVER="1",
-           CCX_NPROC_RESULTS="1", CCX_NPROC_STIFFNESS="1")
 
 # beam theory, for comparison
 I_SEC = B * T ** 3 / 12                       # second moment of area about y, m^4
@@ -147,24 +134,11 @@ def mesh(h, work, full, graded=None):
         nx, ny, qx, qy = graded_level(graded)
         nz = ny
     fx, fy = fractions(nx, qx), fractions(ny, qy)
-    geo = os.path.join(work, "beam.geo")
-    msh = os.path.join(work, "beam.msh")
     ones = lambda n: ", ".join(["1"] * n)
-    with open(geo, "w") as f:
-        f.write(GEO.format(L=L, by=by, tz=tz, nx=ones(nx), ny=ones(ny), nz=ones(nz),
-                           fx=", ".join(repr(v) for v in fx), fy=", ".join(repr(v) for v in fy),
-                           fz=", ".join(repr(v) for v in fy)))
-    subprocess.run(["gmsh", "-3", geo, "-o", msh, "-format", "msh22", "-v", "1"],
-                   check=True, env=ENV, stdout=subprocess.DEVNULL)
-    lines = open(msh).read().split("\n")
-    i = lines.index("$Nodes")
-    n = int(lines[i + 1])
-    ids = np.empty(n, dtype=np.int64)
-    xyz = np.empty((n, 3))
-    for k in range(n):
-        t = lines[i + 2 + k].split()
-        ids[k] = int(t[0])
-        xyz[k] = float(t[1]), float(t[2]), float(t[3])
+    lines = cc.gmsh(GEO.format(L=L, by=by, tz=tz, nx=ones(nx), ny=ones(ny), nz=ones(nz),
+                               fx=", ".join(repr(v) for v in fx), fy=", ".join(repr(v) for v in fy),
+                               fz=", ".join(repr(v) for v in fy)), work, "beam", dim=3)
+    ids, xyz = cc.msh_nodes(lines, 3)
     if graded is None:
         # gmsh leaves round-off on the uniform grid; snap to the exact half-element grid
         grid = np.round(xyz / (h / 2))
@@ -172,15 +146,10 @@ def mesh(h, work, full, graded=None):
         xyz = grid * (h / 2)
     key = lambda p: tuple(np.round(p / TOL).astype(np.int64))
     at = {key(p): nid for p, nid in zip(xyz, ids)}
-    pos = {nid: k for k, nid in enumerate(ids)}
-    i = lines.index("$Elements")
-    m = int(lines[i + 1])
+    pos = cc.node_index(ids)
     elems = []
-    for k in range(m):
-        t = [int(v) for v in lines[i + 2 + k].split()]
-        if t[1] != 17:   # 20-node hexahedron
-            continue
-        c = t[3 + t[2]:][:8]   # gmsh and ccx share the corner order
+    for e in cc.msh_elements(lines, 17):   # 20-node hexahedra
+        c = e[:8]   # gmsh and ccx share the corner order
         g = np.array([xyz[pos[v]] for v in c])
         # ccx wants a positive volume: corner 5 on the side the normal of 1-2-3-4 points to
         if np.dot(np.cross(g[1] - g[0], g[3] - g[0]), g[4] - g[0]) < 0:
@@ -195,20 +164,12 @@ def mesh(h, work, full, graded=None):
 
 
 # ---- step 2: CalculiX input -------------------------------------------------------------
-def num(v):
-    """A number for the ccx input. ccx reads a number from its first 20 characters (Fortran
-    f20.0): a longer one whose first 20 characters still read as a number is silently cut.
-    Python's shortest repr can be longer (a node at y = 6.135769156722633e-05 m was read as
-    6.1357 m), so write 14 significant digits, which fit in 20 characters with the sign."""
-    return f"{v:.13e}"
-
-
 def tip_weights(ids, xyz, elems, full):
     """Consistent nodal weights {node: w} of a unit uniform traction on the face x = L
     (sum w = face area): -A/12 at the corners and A/3 at the mid-edge nodes of each
     rectangular element face of area A."""
     area = B * T if full else B * T / 4
-    pos = {nid: k for k, nid in enumerate(ids)}
+    pos = cc.node_index(ids)
     w = {}
     total = 0.0
     for e in elems:
@@ -237,16 +198,10 @@ def write_inp(path, ids, xyz, elems, w, full):
     force = PZ if full else PZ / 4
     assert abs(sum(loads.values()) - force) < 1e-9 * abs(force)
     with open(path, "w") as f:
-        f.write("*HEADING\ncantilever, tip shear, C3D20R\n*NODE, NSET=NALL\n")
-        for nid, (x, y, z) in zip(ids, xyz):
-            f.write(f"{nid}, {num(x)}, {num(y)}, {num(z)}\n")
-        f.write("*ELEMENT, TYPE=C3D20R, ELSET=EALL\n")
-        for eid, e in enumerate(elems, start=1):
-            s = [str(v) for v in e]   # ccx: at most 16 entries on the first line
-            f.write(f"{eid}, " + ", ".join(s[:15]) + ",\n" + ", ".join(s[15:]) + "\n")
-        f.write("*NSET, NSET=NFIX\n" + "".join(f"{v},\n" for v in fixed))
-        f.write("*NSET, NSET=NOUT\n" + "".join(f"{v},\n" for v in sorted(set(tip) | set(center_line))))
-        f.write(f"*MATERIAL, NAME=M\n*ELASTIC\n{num(E)}, {num(NU)}\n")
+        cc.write_mesh(f, "cantilever, tip shear, C3D20R", ids, xyz, elems, "C3D20R")
+        cc.write_nset(f, "NFIX", fixed)
+        cc.write_nset(f, "NOUT", sorted(set(tip) | set(center_line)))
+        f.write(f"*MATERIAL, NAME=M\n*ELASTIC\n{cc.num(E)}, {cc.num(NU)}\n")
         f.write("*SOLID SECTION, ELSET=EALL, MATERIAL=M\n")
         f.write("*BOUNDARY\nNFIX, 1, 3, 0.0\n")
         if not full:
@@ -254,7 +209,7 @@ def write_inp(path, ids, xyz, elems, w, full):
             f.write("".join(f"{v}, 1, 2, 0.0\n" for v in anti_z))
         f.write("*STEP\n*STATIC\n*CLOAD\n")
         for nid in tip:
-            f.write(f"{nid}, 3, {num(loads[nid])}\n")
+            f.write(f"{nid}, 3, {cc.num(loads[nid])}\n")
         f.write("*NODE PRINT, NSET=NOUT\nU\n")
         f.write("*NODE PRINT, NSET=NFIX, TOTALS=ONLY\nRF\n")
         f.write("*END STEP\n")
@@ -262,44 +217,13 @@ def write_inp(path, ids, xyz, elems, w, full):
 
 
 # ---- step 3: run ccx, read .dat ---------------------------------------------------------
-def parse_dat(path):
-    """Displacements {node: (ux, uy, uz)} and the total reaction (fx, fy, fz) of NFIX."""
-    u, total = {}, None
-    mode = None
-    for line in open(path):
-        s = line.strip()
-        if not s:
-            continue
-        if s.startswith("displacements"):
-            mode = "u"
-            continue
-        if s.startswith("total force"):
-            mode = "rf"
-            continue
-        if s[0].isalpha():
-            mode = None
-            continue
-        t = s.split()
-        if mode == "u":
-            u[int(t[0])] = tuple(float(v) for v in t[1:4])
-        elif mode == "rf":
-            total = tuple(float(v) for v in t[:3])
-            mode = None
-    return u, total
-
-
 def solve(h, work, full=False, graded=None):
     ids, xyz, elems = mesh(h, work, full, graded)
     w = tip_weights(ids, xyz, elems, full)
     center_line = write_inp(os.path.join(work, "beam.inp"), ids, xyz, elems, w, full)
-    t0 = time.time()
-    r = subprocess.run(["ccx", "-i", "beam"], cwd=work, env=ENV,
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    seconds = time.time() - t0
-    if r.returncode != 0 or "ERROR" in r.stdout:
-        sys.exit(f"ccx failed for h = {h}:\n{r.stdout[-3000:]}")
-    u, total = parse_dat(os.path.join(work, "beam.dat"))
-    pos = {nid: k for k, nid in enumerate(ids)}
+    seconds = cc.run_ccx(work, "beam", f"h = {h}")
+    u, (total,) = cc.parse_dat(os.path.join(work, "beam.dat"), 3)
+    pos = cc.node_index(ids)
     tc = [nid for nid in center_line if abs(xyz[pos[nid], 0] - L) < TOL]
     assert len(tc) == 1
     mean = sum(w[nid] * u[nid][2] for nid in w) / sum(w.values())
@@ -308,51 +232,14 @@ def solve(h, work, full=False, graded=None):
                 seconds=seconds, reaction=total, centerline=cl, full=full, graded=graded)
 
 
-def richardson(f1, f2, f3, p=None):
-    """Richardson extrapolation of three values on meshes refined by 2 (coarse, medium, fine):
-    observed order p (unless given) and the limit."""
-    if p is None:
-        p = np.log((f1 - f2) / (f2 - f3)) / np.log(2.0)
-    return p, f3 + (f3 - f2) / (2 ** p - 1)
-
-
-def corner_exponent(nu):
-    """Williams' exponent lambda (u ~ r^lambda) of a 90-degree corner between a fixed and a free
-    edge, plane strain: kappa sin^2(lambda pi/2) = (1 + kappa)^2/4 - lambda^2, kappa = 3 - 4 nu.
-    Along the edges of the fixed face (fixed face meeting a free face) the 3-D field has this
-    plane-strain singularity; the pollution it causes in a point displacement goes like
-    h^(2 lambda)."""
-    k = 3 - 4 * nu
-    f = lambda l: k * np.sin(l * np.pi / 2) ** 2 - (1 + k) ** 2 / 4 + l ** 2
-    a, b = 0.5, 0.99
-    for _ in range(60):
-        m = (a + b) / 2
-        a, b = (a, m) if f(a) * f(m) <= 0 else (m, b)
-    return m
-
-
 # ---- step 4: run the meshes, check, write outputs ---------------------------------------
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--max-seconds", type=float, default=200.0,
-                    help="skip a mesh whose predicted ccx time (12 x the previous one) exceeds this (default 200)")
-    ap.add_argument("--keep", help="keep the work files in this folder")
-    ap.add_argument("--out", default=HERE, help="output folder (default: this script's)")
-    a = ap.parse_args()
-    for tool in ("gmsh", "ccx"):
-        if shutil.which(tool) is None:
-            sys.exit(f"{tool} not found: apt-get install gmsh calculix-ccx")
+    a = cc.parse_args(__doc__, max_seconds=200.0, factor=12)
+
     def run(h, full, graded=None):
-        work = tempfile.mkdtemp(prefix=f"perinom_fem_cant3d_h{h * 1e3:g}mm_")
-        try:
-            return solve(h, work, full, graded)
-        finally:
-            if a.keep:
-                dst = os.path.join(a.keep, f"h_{h * 1e3:g}mm" + ("_full" if full else "")
-                                   if graded is None else f"graded_{graded}")
-                shutil.rmtree(dst, ignore_errors=True)
-                shutil.copytree(work, dst)
-            shutil.rmtree(work)
+        name = f"h_{h * 1e3:g}mm" + ("_full" if full else "") if graded is None else f"graded_{graded}"
+        return cc.in_work_folder(f"perinom_fem_cant3d_h{h * 1e3:g}mm_", a.keep, name,
+                                 lambda work: solve(h, work, full, graded))
 
     def show(r):
         fx, fy, fz = r["reaction"]
@@ -374,14 +261,12 @@ def main():
         cl = r["centerline"]   # the centre line bends in z only, without stretching
         assert np.abs(cl[:, 1:3]).max() <= 1e-6 * np.abs(cl[:, 3]).max(), "ux or uy on the centre line"
 
-    results = []
-    for h in H_LIST:
-        if results and results[-1]["seconds"] * 12 > a.max_seconds:
-            print(f"h = {h * 1e3:g} mm skipped: the previous mesh took {results[-1]['seconds']:.1f} s")
-            break
-        results.append(run(h, False))
-        show(results[-1])
-        check(results[-1])
+    def report(h, r):
+        show(r)
+        check(r)
+
+    results = cc.mesh_series(H_LIST, 12, a.max_seconds, lambda h: f"h = {h * 1e3:g} mm",
+                             lambda h: run(h, False), report)
     # the quarter model against the full one, on the two coarsest meshes: same solution to the
     # 7 digits of the .dat file
     for r in results[:2]:
@@ -400,13 +285,13 @@ def main():
         check(graded[-1])
 
     out = {}
-    lam = corner_exponent(NU)
+    lam = cc.corner_exponent(3 - 4 * NU)   # plane strain, along the edges of the fixed face
     for key in ("uz", "mean"):
         f = [r[key] for r in results]
-        p, lim = richardson(*f[-3:])
-        p_prev, lim_prev = richardson(*f[-4:-1]) if len(f) >= 4 else (np.nan, np.nan)
-        _, lim_theory = richardson(*f[-3:], p=2 * lam)
-        _, lim_one = richardson(*f[-3:], p=1.0)
+        p, lim = cc.richardson(*f[-3:])
+        p_prev, lim_prev = cc.richardson(*f[-4:-1]) if len(f) >= 4 else (np.nan, np.nan)
+        _, lim_theory = cc.richardson(*f[-3:], p=2 * lam)
+        _, lim_one = cc.richardson(*f[-3:], p=1.0)
         out[key] = (p, lim, p_prev, lim_prev, f)
         name = {"uz": "tip-centre uz", "mean": "tip-face mean uz"}[key]
         print(f"{name}: successive differences {', '.join(f'{d:.4e}' for d in np.diff(f))} m")
@@ -417,7 +302,7 @@ def main():
               f"relative); finest two differ by {abs(f[-1] - f[-2]) / abs(lim):.1e} relative")
     for key in ("uz", "mean"):
         f = [r[key] for r in graded]
-        p, lim = richardson(*f[-3:])
+        p, lim = cc.richardson(*f[-3:])
         out["graded_" + key] = (p, lim, f)
         name = {"uz": "tip-centre uz", "mean": "tip-face mean uz"}[key]
         print(f"graded family, {name}: successive differences {', '.join(f'{d:.4e}' for d in np.diff(f))} m, "
@@ -429,12 +314,10 @@ def main():
           f"FEM tip centre / Timoshenko = {lim / TIMO_TIP:.5f}")
 
     os.makedirs(a.out, exist_ok=True)
-    with open(os.path.join(a.out, "cantilever_3d.csv"), "w") as f:
-        f.write("h_m,elements,nodes,tip_center_uz_m,tip_face_mean_uz_m,seconds\n")
-        for r in results:
-            f.write(f"{r['h']:.6g},{r['elements']},{r['nodes']},{r['uz']:.7e},{r['mean']:.7e},"
-                    f"{r['seconds']:.2f}\n")
-        f.write(f"0,0,0,{out['uz'][1]:.7e},{out['mean'][1]:.7e},0\n")   # h -> 0: Richardson
+    cc.write_csv(os.path.join(a.out, "cantilever_3d.csv"),
+                 "h_m,elements,nodes,tip_center_uz_m,tip_face_mean_uz_m,seconds",
+                 [f"{cc.mesh_columns(r)},{r['uz']:.7e},{r['mean']:.7e},{r['seconds']:.2f}" for r in results]
+                 + [f"0,0,0,{out['uz'][1]:.7e},{out['mean'][1]:.7e},0"])   # h -> 0: Richardson
     with open(os.path.join(a.out, "cantilever_3d_graded.csv"), "w") as f:
         f.write("level,nx,n_across_half,ratio_x,ratio_yz,elements,nodes,tip_center_uz_m,"
                 "tip_face_mean_uz_m,seconds\n")
@@ -444,15 +327,10 @@ def main():
                     f"{r['uz']:.7e},{r['mean']:.7e},{r['seconds']:.2f}\n")
         f.write(f"inf,0,0,0,0,0,0,{out['graded_uz'][1]:.7e},{out['graded_mean'][1]:.7e},0\n")
     cl = results[-1]["centerline"]
-    with open(os.path.join(a.out, "cantilever_3d_centerline.csv"), "w") as f:
-        f.write("x_m,ux_m,uy_m,uz_m\n")
-        for x, ux, uy, uz in cl:
-            f.write(f"{x:.9g},{ux:.7e},{uy:.7e},{uz:.7e}\n")
+    cc.write_csv(os.path.join(a.out, "cantilever_3d_centerline.csv"), "x_m,ux_m,uy_m,uz_m",
+                 [f"{x:.9g},{ux:.7e},{uy:.7e},{uz:.7e}" for x, ux, uy, uz in cl])
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(9.6, 3.6), dpi=100)
+    fig, (a1, a2) = cc.figure(2)
     xs = np.linspace(0, L, 201)
     eb = lambda x: PZ * x ** 2 * (3 * L - x) / (6 * E * I_SEC)   # Euler-Bernoulli deflection
     a1.plot(xs * 1e3, 0 * xs, "k--", lw=0.8, label="Euler-Bernoulli")
@@ -471,11 +349,7 @@ def main():
     a2.set(xlabel="h (mm)", ylabel="error (mm)", title="tip u_z convergence")
     a2.set_xticks(hs * 1e3, [f"{v * 1e3:g}" for v in hs])
     a2.minorticks_off()
-    for ax in (a1, a2):
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(a.out, "cantilever_3d_fem.png"))
+    cc.save_figure(fig, (a1, a2), os.path.join(a.out, "cantilever_3d_fem.png"))
     print("wrote cantilever_3d.csv, cantilever_3d_graded.csv, cantilever_3d_centerline.csv, "
           "cantilever_3d_fem.png in", a.out)
 

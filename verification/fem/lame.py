@@ -53,28 +53,15 @@ and matplotlib (Debian: python3-numpy python3-matplotlib). Runs single-threaded.
 import os
 import sys
 
-try:
-    import numpy as np
-except ImportError:  # e.g. a pyenv python3 first on PATH: fall back to Debian's, which has numpy
-    if os.path.exists("/usr/bin/python3") and os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3"):
-        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
-    raise
-
-import argparse
-import shutil
-import subprocess
-import tempfile
-import time
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ccx_common as cc   # the shared helpers (it re-runs this under /usr/bin/python3 without numpy)
+import numpy as np
 
 # ---- problem data (SI) ------------------------------------------------------------------
 A, B = 0.01, 0.02              # inner and outer radius, m
 E, NU = 200e9, 0.3             # Pa, -
 P = 1e6                        # internal pressure, Pa
 M_LIST = [2, 4, 8, 16, 32, 64, 128]   # elements through the wall (n = 2 m around the quarter)
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-ENV = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_EQUATION_SOLVER="1",
-           CCX_NPROC_RESULTS="1", CCX_NPROC_STIFFNESS="1")
 TOL = 1e-9                     # m, for finding nodes on the axes and circles
 
 
@@ -116,36 +103,8 @@ Mesh.ElementOrder = 2; Mesh.SecondOrderIncomplete = 1;
 def mesh(m, work):
     """Returns node ids, coordinates (n x 2) and 8-node elements (k x 8, node ids, ccx order)."""
     n = 2 * m
-    geo = os.path.join(work, "wall.geo")
-    msh = os.path.join(work, "wall.msh")
-    with open(geo, "w") as f:
-        f.write(GEO.format(A=A, B=B, m1=m + 1, n1=n + 1))
-    subprocess.run(["gmsh", "-2", geo, "-o", msh, "-format", "msh22", "-v", "1"],
-                   check=True, env=ENV, stdout=subprocess.DEVNULL)
-    lines = open(msh).read().split("\n")
-    i = lines.index("$Nodes")
-    nn = int(lines[i + 1])
-    ids = np.empty(nn, dtype=np.int64)
-    xy = np.empty((nn, 2))
-    for j in range(nn):
-        t = lines[i + 2 + j].split()
-        ids[j] = int(t[0])
-        xy[j] = float(t[1]), float(t[2])
-    i = lines.index("$Elements")
-    ne = int(lines[i + 1])
-    elems = []
-    for j in range(ne):
-        t = [int(v) for v in lines[i + 2 + j].split()]
-        if t[1] == 16:  # 8-node quad; gmsh and ccx both number corners 1-4, then mid-edges 12, 23, 34, 41
-            elems.append(t[3 + t[2]:])
-    elems = np.array(elems, dtype=np.int64)
+    ids, xy, elems = cc.quad8_mesh(cc.gmsh(GEO.format(A=A, B=B, m1=m + 1, n1=n + 1), work, "wall"))
     assert len(elems) == n * m, (len(elems), n, m)
-    # ccx wants counter-clockwise elements in the x-y plane
-    pos = {nid: j for j, nid in enumerate(ids)}
-    c = np.array([[xy[pos[v]] for v in e[:4]] for e in elems])
-    area2 = sum(c[:, a, 0] * c[:, (a + 1) % 4, 1] - c[:, (a + 1) % 4, 0] * c[:, a, 1] for a in range(4))
-    cw = area2 < 0
-    elems[cw] = elems[cw][:, [0, 3, 2, 1, 7, 6, 5, 4]]
     # snap the nodes on the axes exactly (gmsh leaves ~1e-18 m of round-off)
     for col in (0, 1):
         xy[np.abs(xy[:, col]) < TOL, col] = 0.0
@@ -155,41 +114,22 @@ def mesh(m, work):
 
 
 # ---- step 2: CalculiX input -------------------------------------------------------------
-def num(v):
-    """A number for the ccx input. ccx reads a number from its first 20 characters (Fortran
-    f20.0): a longer one whose first 20 characters still read as a number is silently cut.
-    Python's shortest repr can be longer (a node at y = 6.135769156722633e-05 m was read as
-    6.1357 m), so write 14 significant digits, which fit in 20 characters with the sign."""
-    return f"{v:.13e}"
-
-
 def write_inp(path, ids, xy, elems, out_nodes):
-    pos = {nid: k for k, nid in enumerate(ids)}
     r = np.hypot(xy[:, 0], xy[:, 1])
     left = ids[np.abs(xy[:, 0]) < TOL]
     bottom = ids[np.abs(xy[:, 1]) < TOL]
-    # faces on r = a: CPE8 face k (P1..P4) joins corners k and k+1
-    dload = []
-    for eid, e in enumerate(elems, start=1):
-        for k in range(4):
-            if abs(r[pos[e[k]]] - A) < TOL and abs(r[pos[e[(k + 1) % 4]]] - A) < TOL:
-                dload.append((eid, k + 1))
+    dload = cc.faces_on(ids, elems, np.abs(r - A) < TOL)   # the faces on r = a
     with open(path, "w") as f:
-        f.write("*HEADING\nquarter of a thick-walled cylinder, plane strain, CPE8\n*NODE, NSET=NALL\n")
-        for nid, (x, y) in zip(ids, xy):
-            f.write(f"{nid}, {num(x)}, {num(y)}, 0.0\n")
-        f.write("*ELEMENT, TYPE=CPE8, ELSET=EALL\n")
-        for eid, e in enumerate(elems, start=1):
-            f.write(f"{eid}, " + ", ".join(str(v) for v in e) + "\n")
-        f.write("*NSET, NSET=NLEFT\n" + "".join(f"{v},\n" for v in left))
-        f.write("*NSET, NSET=NBOT\n" + "".join(f"{v},\n" for v in bottom))
-        f.write("*NSET, NSET=NOUT\n" + "".join(f"{v},\n" for v in out_nodes))
-        f.write(f"*MATERIAL, NAME=M\n*ELASTIC\n{num(E)}, {num(NU)}\n")
+        cc.write_mesh(f, "quarter of a thick-walled cylinder, plane strain, CPE8", ids, xy, elems, "CPE8")
+        cc.write_nset(f, "NLEFT", left)
+        cc.write_nset(f, "NBOT", bottom)
+        cc.write_nset(f, "NOUT", out_nodes)
+        f.write(f"*MATERIAL, NAME=M\n*ELASTIC\n{cc.num(E)}, {cc.num(NU)}\n")
         f.write("*SOLID SECTION, ELSET=EALL, MATERIAL=M\n1.0\n")
         f.write("*BOUNDARY\nNLEFT, 1, 1, 0.0\nNBOT, 2, 2, 0.0\n")
         f.write("*STEP\n*STATIC\n*DLOAD\n")
         for eid, face in dload:
-            f.write(f"{eid}, P{face}, {num(P)}\n")
+            f.write(f"{eid}, P{face}, {cc.num(P)}\n")
         f.write("*NODE PRINT, NSET=NOUT\nU\n")
         f.write("*NODE PRINT, NSET=NLEFT, TOTALS=ONLY\nRF\n")
         f.write("*NODE PRINT, NSET=NBOT, TOTALS=ONLY\nRF\n")
@@ -199,55 +139,13 @@ def write_inp(path, ids, xy, elems, out_nodes):
 
 
 # ---- step 3: run ccx, read .dat and .frd ------------------------------------------------
-def parse_dat(path):
-    """Displacements {node: (ux, uy)} and the total reactions [(fx, fy), ...] in print order."""
-    u, totals = {}, []
-    mode = None
-    for line in open(path):
-        s = line.strip()
-        if not s:
-            continue
-        if s.startswith("displacements"):
-            mode = "u"
-            continue
-        if s.startswith("total force"):
-            mode = "rf"
-            continue
-        if s[0].isalpha():
-            mode = None
-            continue
-        t = s.split()
-        if mode == "u":
-            u[int(t[0])] = (float(t[1]), float(t[2]))
-        elif mode == "rf":
-            totals.append((float(t[0]), float(t[1])))
-            mode = None
-    return u, totals
-
-
-def parse_frd_stress(path):
-    """Nodal stresses {node: (sxx, syy, szz, sxy)} from the STRESS block of the .frd."""
-    s, inside = {}, False
-    for line in open(path):
-        if line.startswith(" -4"):
-            inside = line.split()[1] == "STRESS"
-            continue
-        if inside and line.startswith(" -3"):
-            inside = False
-        if inside and line.startswith(" -1"):
-            nid = int(line[3:13])
-            v = [float(line[13 + 12 * k: 25 + 12 * k]) for k in range(6)]  # SXX SYY SZZ SXY SYZ SZX
-            s[nid] = (v[0], v[1], v[2], v[3])
-    return s
-
-
 def pressure_load(ids, xy, elems, node):
     """The consistent nodal force (fx, fy) of the internal pressure at a node on r = a, as ccx
     computes it on the isoparametric quadratic faces: p times the integral of N_i over the
     face of the normal pointing away from the axis (3-point Gauss, exact for the quadratic
     face). At the corners (a, 0) and (0, a) it has a tangential part (the face is only nearly
     a circle), which ccx counts in the roller's RF there."""
-    pos = {nid: k for k, nid in enumerate(ids)}
+    pos = cc.node_index(ids)
     r = np.hypot(xy[:, 0], xy[:, 1])
     g, w = np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5, 8, 5]) / 9
     f = np.zeros(2)
@@ -276,9 +174,9 @@ def polar(x, y, ux, uy, sxx, syy, sxy):
             sxx * s * s + syy * c * c - 2 * sxy * s * c)
 
 
-def solve(m, work):
+def solve(work, m):
     ids, xy, elems = mesh(m, work)
-    pos = {nid: k for k, nid in enumerate(ids)}
+    pos = cc.node_index(ids)
     ang = np.arctan2(xy[:, 1], xy[:, 0])
     ray = ids[np.abs(ang - np.pi / 4) < 1e-6]   # theta = 45 deg (gmsh places the arc nodes to ~2e-9 rad)
     a0 = ids[(np.abs(xy[:, 1]) < TOL) & (np.abs(xy[:, 0] - A) < TOL)]
@@ -286,14 +184,9 @@ def solve(m, work):
     assert len(ray) == 2 * m + 1 and len(a0) == 1
     nload = write_inp(os.path.join(work, "wall.inp"), ids, xy, elems, sorted(set(ray) | set(a0)))
     assert nload == 2 * m
-    t0 = time.time()
-    r = subprocess.run(["ccx", "-i", "wall"], cwd=work, env=ENV,
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    seconds = time.time() - t0
-    if r.returncode != 0 or "ERROR" in r.stdout:
-        sys.exit(f"ccx failed for m = {m}:\n{r.stdout[-3000:]}")
-    u, totals = parse_dat(os.path.join(work, "wall.dat"))
-    st = parse_frd_stress(os.path.join(work, "wall.frd"))
+    seconds = cc.run_ccx(work, "wall", f"m = {m}")
+    u, totals = cc.parse_dat(os.path.join(work, "wall.dat"))
+    st = cc.parse_frd_stress(os.path.join(work, "wall.frd"))
     rows = []
     for nid in ray:
         x, y = xy[pos[nid]]
@@ -310,19 +203,6 @@ def solve(m, work):
                 st_a_45_nodal=line[0, 3], st_a_45_disp=st_disp)
 
 
-def richardson(f1, f2, f3, p=None):
-    """Richardson extrapolation of three values on meshes refined by 2 (coarse, medium, fine):
-    observed order p (unless given) and the limit. Without a clean monotone convergence
-    (differences of opposite signs, an observed order below 0.5, or a last difference at the
-    round-off of the printed digits) it returns p = nan and the finest value."""
-    if p is None:
-        d1, d2 = f1 - f2, f2 - f3
-        if d2 == 0 or d1 / d2 < 2 ** 0.5 or abs(d2) <= 3e-7 * abs(f3):
-            return np.nan, f3
-        p = np.log(d1 / d2) / np.log(2.0)
-    return p, f3 + (f3 - f2) / (2 ** p - 1)
-
-
 KEYS = ["ur_a_45", "ur_a_0", "st_a_45_nodal", "st_a_45_disp"]
 EXACT = {"ur_a_45": ur_exact(A), "ur_a_0": ur_exact(A), "st_a_45_nodal": ST_A, "st_a_45_disp": ST_A}
 CSV_NAMES = {"ur_a_45": "ur_a_45_m", "ur_a_0": "ur_a_0_m", "st_a_45_nodal": "st_a_45_nodal_pa",
@@ -331,38 +211,21 @@ CSV_NAMES = {"ur_a_45": "ur_a_45_m", "ur_a_0": "ur_a_0_m", "st_a_45_nodal": "st_
 
 # ---- step 4: run the meshes, check, write outputs ---------------------------------------
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--max-seconds", type=float, default=120.0,
-                    help="skip a mesh whose predicted ccx time (6 x the previous one) exceeds this (default 120)")
-    ap.add_argument("--keep", help="keep the work files in this folder")
-    ap.add_argument("--out", default=HERE, help="output folder (default: this script's)")
-    a = ap.parse_args()
-    for tool in ("gmsh", "ccx"):
-        if shutil.which(tool) is None:
-            sys.exit(f"{tool} not found: apt-get install gmsh calculix-ccx")
+    a = cc.parse_args(__doc__, max_seconds=120.0)
     print(f"closed form: u_r(a) = {ur_exact(A):.7e} m, u_r(b) = {ur_exact(B):.7e} m, "
           f"sigma_t(a) = {ST_A:.7e} Pa, sigma_r(a) = {-P:.7e} Pa, sigma_z = {SZ_EXACT:.7e} Pa")
-    results = []
-    for m in M_LIST:
-        if results and results[-1]["seconds"] * 6 > a.max_seconds:
-            print(f"m = {m} skipped: the previous mesh took {results[-1]['seconds']:.1f} s")
-            break
-        work = tempfile.mkdtemp(prefix=f"perinom_fem_lame_m{m}_")
-        try:
-            r = solve(m, work)
-        finally:
-            if a.keep:
-                dst = os.path.join(a.keep, f"m_{m}")
-                shutil.rmtree(dst, ignore_errors=True)
-                shutil.copytree(work, dst)
-            shutil.rmtree(work)
-        results.append(r)
+
+    def report(m, r):
         (lx, ly), (bx, by) = r["reactions"]
         fx90, fy0 = r["corner_loads"]
         print(f"m = {m:3d} (h = {r['h'] * 1e3:.4f} mm): {r['elements']:6d} elements {r['nodes']:7d} nodes  "
               f"ccx {r['seconds']:6.2f} s  reactions: x on x = 0 {lx - fx90:.7e}, y on y = 0 "
               f"{by - fy0:.7e} N/m (RF totals {lx:.7e}, {by:.7e})", flush=True)
         print("   " + "  ".join(f"{k} {r[k]:.7e} ({r[k] / EXACT[k] - 1:+.1e})" for k in KEYS), flush=True)
+
+    results = cc.mesh_series(M_LIST, 6, a.max_seconds, lambda m: f"m = {m}",
+                             lambda m: cc.in_work_folder(f"perinom_fem_lame_m{m}_", a.keep, f"m_{m}", solve, m),
+                             report)
 
     # sanity checks: equilibrium and the line profiles. Each roller holds the pressure
     # resultant on the quarter back, -p a; ccx's RF total of the roller x = 0 also counts the
@@ -385,30 +248,26 @@ def main():
     out = {}
     for key in KEYS:
         f = [r[key] for r in results]
-        p, lim = richardson(*f[-3:])
+        p, lim = cc.richardson_monotone(*f[-3:])
         out[key] = lim
         print(f"{key}: errors {', '.join(f'{v / EXACT[key] - 1:+.2e}' for v in f)}; extrapolated "
               f"{lim:.7e} ({lim / EXACT[key] - 1:+.1e}, order {p:.2f}); exact {EXACT[key]:.7e}")
 
     os.makedirs(a.out, exist_ok=True)
-    with open(os.path.join(a.out, "lame.csv"), "w") as f:
-        f.write("h_m,elements,nodes," + ",".join(CSV_NAMES[k] for k in KEYS) + ","
-                + ",".join("err_" + k for k in KEYS) + ",seconds\n")
-        for r in results:
-            f.write(f"{r['h']:.6g},{r['elements']},{r['nodes']}," + ",".join(f"{r[k]:.7e}" for k in KEYS)
-                    + "," + ",".join(f"{r[k] / EXACT[k] - 1:.3e}" for k in KEYS) + f",{r['seconds']:.2f}\n")
-        f.write("0,0,0," + ",".join(f"{out[k]:.7e}" for k in KEYS) + ","
-                + ",".join(f"{out[k] / EXACT[k] - 1:.3e}" for k in KEYS) + ",0\n")
-    with open(os.path.join(a.out, "lame_line.csv"), "w") as f:
-        f.write("r_m,ur_m,ur_exact_m,sr_pa,sr_exact_pa,st_pa,st_exact_pa,sz_pa,sz_exact_pa\n")
-        for r_, u_, s1, s2, s3 in fine["line"]:
-            f.write(f"{r_:.9g},{u_:.7e},{ur_exact(r_):.7e},{s1:.6e},{sr_exact(r_):.6e},"
-                    f"{s2:.6e},{st_exact(r_):.6e},{s3:.6e},{SZ_EXACT:.6e}\n")
+    cc.write_csv(os.path.join(a.out, "lame.csv"),
+                 "h_m,elements,nodes," + ",".join(CSV_NAMES[k] for k in KEYS) + ","
+                 + ",".join("err_" + k for k in KEYS) + ",seconds",
+                 [cc.mesh_columns(r) + "," + ",".join(f"{r[k]:.7e}" for k in KEYS)
+                  + "," + ",".join(f"{r[k] / EXACT[k] - 1:.3e}" for k in KEYS) + f",{r['seconds']:.2f}"
+                  for r in results]
+                 + ["0,0,0," + ",".join(f"{out[k]:.7e}" for k in KEYS) + ","
+                    + ",".join(f"{out[k] / EXACT[k] - 1:.3e}" for k in KEYS) + ",0"])
+    cc.write_csv(os.path.join(a.out, "lame_line.csv"),
+                 "r_m,ur_m,ur_exact_m,sr_pa,sr_exact_pa,st_pa,st_exact_pa,sz_pa,sz_exact_pa",
+                 [f"{r_:.9g},{u_:.7e},{ur_exact(r_):.7e},{s1:.6e},{sr_exact(r_):.6e},"
+                  f"{s2:.6e},{st_exact(r_):.6e},{s3:.6e},{SZ_EXACT:.6e}" for r_, u_, s1, s2, s3 in fine["line"]])
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(9.6, 3.6), dpi=100)
+    fig, (a1, a2) = cc.figure(2)
     secs = np.array([max(r["seconds"], 1e-3) for r in results])
     for key, lab in (("ur_a_45", "u_r(a), 45 deg"), ("ur_a_0", "u_r(a), 0 deg"),
                      ("st_a_45_nodal", "sigma_t(a), nodal"), ("st_a_45_disp", "sigma_t(a), from u_r")):
@@ -424,11 +283,7 @@ def main():
         a2.plot(c[:, 0] * 1e3, c[:, 2] / 1e6, mk, ms=4, color="C0", label=f"sigma_r, m = {r['m']}")
         a2.plot(c[:, 0] * 1e3, c[:, 3] / 1e6, mk, ms=4, color="C1", label=f"sigma_t, m = {r['m']}")
     a2.set(xlabel="r (mm)", ylabel="stress (MPa)", title="theta = 45 deg")
-    for ax in (a1, a2):
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(a.out, "lame_fem.png"))
+    cc.save_figure(fig, (a1, a2), os.path.join(a.out, "lame_fem.png"))
     print("wrote lame.csv, lame_line.csv, lame_fem.png in", a.out)
 
 

@@ -63,18 +63,9 @@ and matplotlib (Debian: python3-numpy python3-matplotlib). Runs single-threaded.
 import os
 import sys
 
-try:
-    import numpy as np
-except ImportError:  # e.g. a pyenv python3 first on PATH: fall back to Debian's, which has numpy
-    if os.path.exists("/usr/bin/python3") and os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3"):
-        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
-    raise
-
-import argparse
-import shutil
-import subprocess
-import tempfile
-import time
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ccx_common as cc   # the shared helpers (it re-runs this under /usr/bin/python3 without numpy)
+import numpy as np
 
 # ---- problem data (SI) ------------------------------------------------------------------
 W = 0.05                       # half width of the plate, m
@@ -84,10 +75,6 @@ S = 1e6                        # applied traction, Pa
 N_LIST = [4, 8, 16, 32, 64, 128]   # elements per 45-degree arc (m = 2 n from the hole outwards)
 Q0 = 1.48                      # radial growth ratio of the coarsest mesh (n = 4, m = 8)
 FIT_NODES = 6                  # nodes (after the hole-edge node) in the line fit: 3 elements
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-ENV = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_EQUATION_SOLVER="1",
-           CCX_NPROC_RESULTS="1", CCX_NPROC_STIFFNESS="1")
 TOL = 1e-9                     # m, for finding nodes on the straight edges
 
 
@@ -113,36 +100,9 @@ def mesh(n, work):
     k = round(np.log2(n / N_LIST[0]))
     m = 2 * n
     q = Q0 ** (1 / 2 ** k)
-    geo = os.path.join(work, "plate.geo")
-    msh = os.path.join(work, "plate.msh")
-    with open(geo, "w") as f:
-        f.write(GEO.format(R=R, Rd=R / np.sqrt(2), W=W, n1=n + 1, m1=m + 1, q=q))
-    subprocess.run(["gmsh", "-2", geo, "-o", msh, "-format", "msh22", "-v", "1"],
-                   check=True, env=ENV, stdout=subprocess.DEVNULL)
-    lines = open(msh).read().split("\n")
-    i = lines.index("$Nodes")
-    nn = int(lines[i + 1])
-    ids = np.empty(nn, dtype=np.int64)
-    xy = np.empty((nn, 2))
-    for j in range(nn):
-        t = lines[i + 2 + j].split()
-        ids[j] = int(t[0])
-        xy[j] = float(t[1]), float(t[2])
-    i = lines.index("$Elements")
-    ne = int(lines[i + 1])
-    elems = []
-    for j in range(ne):
-        t = [int(v) for v in lines[i + 2 + j].split()]
-        if t[1] == 16:  # 8-node quad; gmsh and ccx both number corners 1-4, then mid-edges 12, 23, 34, 41
-            elems.append(t[3 + t[2]:])
-    elems = np.array(elems, dtype=np.int64)
+    ids, xy, elems = cc.quad8_mesh(cc.gmsh(GEO.format(R=R, Rd=R / np.sqrt(2), W=W, n1=n + 1, m1=m + 1, q=q),
+                                           work, "plate"))
     assert len(elems) == 2 * n * m, (len(elems), n, m)
-    # ccx wants counter-clockwise elements in the x-y plane
-    pos = {nid: j for j, nid in enumerate(ids)}
-    c = np.array([[xy[pos[v]] for v in e[:4]] for e in elems])
-    area2 = sum(c[:, a, 0] * c[:, (a + 1) % 4, 1] - c[:, (a + 1) % 4, 0] * c[:, a, 1] for a in range(4))
-    cw = area2 < 0
-    elems[cw] = elems[cw][:, [0, 3, 2, 1, 7, 6, 5, 4]]
     # snap the straight edges exactly (gmsh leaves ~1e-17 m of round-off)
     for col, val in ((0, 0.0), (1, 0.0), (0, W), (1, W)):
         on = np.abs(xy[:, col] - val) < TOL
@@ -153,14 +113,6 @@ def mesh(n, work):
 
 
 # ---- step 2: CalculiX input -------------------------------------------------------------
-def num(v):
-    """A number for the ccx input. ccx reads a number from its first 20 characters (Fortran
-    f20.0): a longer one whose first 20 characters still read as a number is silently cut.
-    Python's shortest repr can be longer (a node at y = 6.135769156722633e-05 m was read as
-    6.1357 m), so write 14 significant digits, which fit in 20 characters with the sign."""
-    return f"{v:.13e}"
-
-
 def node_at(ids, xy, x, y):
     k = np.nonzero((np.abs(xy[:, 0] - x) < TOL) & (np.abs(xy[:, 1] - y) < TOL))[0]
     assert len(k) == 1, (x, y, k)
@@ -168,35 +120,21 @@ def node_at(ids, xy, x, y):
 
 
 def write_inp(path, ids, xy, elems):
-    pos = {nid: k for k, nid in enumerate(ids)}
     left = ids[np.abs(xy[:, 0]) < TOL]
     bottom = ids[np.abs(xy[:, 1]) < TOL]
     points = [node_at(ids, xy, W, 0.0), node_at(ids, xy, W, W), node_at(ids, xy, 0.0, W)]
     hole = ids[np.abs(np.hypot(xy[:, 0], xy[:, 1]) - R) < 1e-9 * R]
-    # faces on x = W: CPE8 face k (P1..P4) joins corners k and k+1
-    dload = []
-    for eid, e in enumerate(elems, start=1):
-        for k in range(4):
-            a, b = xy[pos[e[k]]], xy[pos[e[(k + 1) % 4]]]
-            if abs(a[0] - W) < TOL and abs(b[0] - W) < TOL:
-                dload.append((eid, k + 1))
+    dload = cc.faces_on(ids, elems, np.abs(xy[:, 0] - W) < TOL)   # the faces on x = W
     with open(path, "w") as f:
-        f.write("*HEADING\nquarter plate with a hole, plane strain, CPE8\n*NODE, NSET=NALL\n")
-        for nid, (x, y) in zip(ids, xy):
-            f.write(f"{nid}, {num(x)}, {num(y)}, 0.0\n")
-        f.write("*ELEMENT, TYPE=CPE8, ELSET=EALL\n")
-        for eid, e in enumerate(elems, start=1):
-            f.write(f"{eid}, " + ", ".join(str(v) for v in e) + "\n")
-        f.write("*NSET, NSET=NLEFT\n" + "".join(f"{v},\n" for v in left))
-        f.write("*NSET, NSET=NBOT\n" + "".join(f"{v},\n" for v in bottom))
-        f.write("*NSET, NSET=NPTS\n" + "".join(f"{v},\n" for v in points))
-        f.write("*NSET, NSET=NHOLE\n" + "".join(f"{v},\n" for v in hole))
-        f.write(f"*MATERIAL, NAME=M\n*ELASTIC\n{num(E)}, {num(NU)}\n")
+        cc.write_mesh(f, "quarter plate with a hole, plane strain, CPE8", ids, xy, elems, "CPE8")
+        for name, nodes in (("NLEFT", left), ("NBOT", bottom), ("NPTS", points), ("NHOLE", hole)):
+            cc.write_nset(f, name, nodes)
+        f.write(f"*MATERIAL, NAME=M\n*ELASTIC\n{cc.num(E)}, {cc.num(NU)}\n")
         f.write("*SOLID SECTION, ELSET=EALL, MATERIAL=M\n1.0\n")
         f.write("*BOUNDARY\nNLEFT, 1, 1, 0.0\nNBOT, 2, 2, 0.0\n")
         f.write("*STEP\n*STATIC\n*DLOAD\n")
         for eid, face in dload:
-            f.write(f"{eid}, P{face}, {num(-S)}\n")   # negative pressure = tension
+            f.write(f"{eid}, P{face}, {cc.num(-S)}\n")   # negative pressure = tension
         f.write("*NODE PRINT, NSET=NLEFT\nU\n")
         f.write("*NODE PRINT, NSET=NBOT\nU\n")
         f.write("*NODE PRINT, NSET=NPTS\nU\n")
@@ -209,48 +147,6 @@ def write_inp(path, ids, xy, elems):
 
 
 # ---- step 3: run ccx, read .dat and .frd ------------------------------------------------
-def parse_dat(path):
-    """Displacements {node: (ux, uy)} and the total reactions [(fx, fy), ...] in print order."""
-    u, totals = {}, []
-    mode = None
-    for line in open(path):
-        s = line.strip()
-        if not s:
-            continue
-        if s.startswith("displacements"):
-            mode = "u"
-            continue
-        if s.startswith("total force"):
-            mode = "rf"
-            continue
-        if s[0].isalpha():
-            mode = None
-            continue
-        t = s.split()
-        if mode == "u":
-            u[int(t[0])] = (float(t[1]), float(t[2]))
-        elif mode == "rf":
-            totals.append((float(t[0]), float(t[1])))
-            mode = None
-    return u, totals
-
-
-def parse_frd_stress(path):
-    """Nodal stresses {node: (sxx, syy, szz, sxy)} from the STRESS block of the .frd."""
-    s, inside = {}, False
-    for line in open(path):
-        if line.startswith(" -4"):
-            inside = line.split()[1] == "STRESS"
-            continue
-        if inside and line.startswith(" -3"):
-            inside = False
-        if inside and line.startswith(" -1"):
-            nid = int(line[3:13])
-            v = [float(line[13 + 12 * k: 25 + 12 * k]) for k in range(6)]  # SXX SYY SZZ SXY SYZ SZX
-            s[nid] = (v[0], v[1], v[2], v[3])
-    return s
-
-
 def line_fit(d, f):
     """Least-squares cubic through the values f at distances d from the hole (d > 0, the
     first FIT_NODES nodes), evaluated at d = 0."""
@@ -268,19 +164,14 @@ def hoop_fit(phi, u, k):
     return np.linalg.lstsq(A, u, rcond=None)[0][0]
 
 
-def solve(n, work):
+def solve(work, n):
     ids, xy, elems, m = mesh(n, work)
     nload = write_inp(os.path.join(work, "plate.inp"), ids, xy, elems)
     assert nload == n
-    t0 = time.time()
-    r = subprocess.run(["ccx", "-i", "plate"], cwd=work, env=ENV,
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    seconds = time.time() - t0
-    if r.returncode != 0 or "ERROR" in r.stdout:
-        sys.exit(f"ccx failed for n = {n}:\n{r.stdout[-3000:]}")
-    u, totals = parse_dat(os.path.join(work, "plate.dat"))
-    st = parse_frd_stress(os.path.join(work, "plate.frd"))
-    pos = {nid: k for k, nid in enumerate(ids)}
+    seconds = cc.run_ccx(work, "plate", f"n = {n}")
+    u, totals = cc.parse_dat(os.path.join(work, "plate.dat"))
+    st = cc.parse_frd_stress(os.path.join(work, "plate.frd"))
+    pos = cc.node_index(ids)
     # symmetry line x = 0: nodes from the hole (0, R) up to (0, W); the corner nodes are the
     # even ones (n + 1 counted from the hole: 0, 2, 4, ...)
     left = sorted((xy[pos[nid], 1], nid) for nid in ids if abs(xy[pos[nid], 0]) < TOL)
@@ -313,19 +204,6 @@ def solve(n, work):
     return res
 
 
-def richardson(f1, f2, f3, p=None):
-    """Richardson extrapolation of three values on meshes refined by 2 (coarse, medium, fine):
-    observed order p (unless given) and the limit. Without a clean monotone convergence
-    (differences of opposite signs, an observed order below 0.5, or a last difference at the
-    round-off of the printed digits) it returns p = nan and the finest value."""
-    if p is None:
-        d1, d2 = f1 - f2, f2 - f3
-        if d2 == 0 or d1 / d2 < 2 ** 0.5 or abs(d2) <= 3e-7 * abs(f3):
-            return np.nan, f3
-        p = np.log(d1 / d2) / np.log(2.0)
-    return p, f3 + (f3 - f2) / (2 ** p - 1)
-
-
 KEYS = ["ux_x05_y0", "ux_x05_y05", "uy_x0_y05", "sxx_nodal", "sxx_line", "sxx_disp",
         "syy_nodal", "syy_line", "syy_disp"]
 UNITS = {"ux_x05_y0": "m", "ux_x05_y05": "m", "uy_x0_y05": "m"}
@@ -336,36 +214,19 @@ CSV_NAMES = {"ux_x05_y0": "ux_x05_y0_m", "ux_x05_y05": "ux_x05_y05_m", "uy_x0_y0
 
 # ---- step 4: run the meshes, check, write outputs ---------------------------------------
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--max-seconds", type=float, default=150.0,
-                    help="skip a mesh whose predicted ccx time (6 x the previous one) exceeds this (default 150)")
-    ap.add_argument("--keep", help="keep the work files in this folder")
-    ap.add_argument("--out", default=HERE, help="output folder (default: this script's)")
-    a = ap.parse_args()
-    for tool in ("gmsh", "ccx"):
-        if shutil.which(tool) is None:
-            sys.exit(f"{tool} not found: apt-get install gmsh calculix-ccx")
-    results = []
-    for n in N_LIST:
-        if results and results[-1]["seconds"] * 6 > a.max_seconds:
-            print(f"n = {n} skipped: the previous mesh took {results[-1]['seconds']:.1f} s")
-            break
-        work = tempfile.mkdtemp(prefix=f"perinom_fem_hole_n{n}_")
-        try:
-            r = solve(n, work)
-        finally:
-            if a.keep:
-                dst = os.path.join(a.keep, f"n_{n}")
-                shutil.rmtree(dst, ignore_errors=True)
-                shutil.copytree(work, dst)
-            shutil.rmtree(work)
-        results.append(r)
+    a = cc.parse_args(__doc__, max_seconds=150.0)
+
+    def report(n, r):
         (lx, ly), (bx, by) = r["reactions"]
         print(f"n = {n:3d} (h at the hole {r['h'] * 1e3:.4f} mm): {r['elements']:6d} elements "
               f"{r['nodes']:7d} nodes  ccx {r['seconds']:6.1f} s  reactions: x on x = 0 {lx:.7e}, "
               f"y on y = 0 {by:.1e} N/m; nodal syy at (0, R) (zero in the limit) {r['line'][0, 2]:.1f} Pa",
               flush=True)
         print("   " + "  ".join(f"{k} {r[k]:.7e}" for k in KEYS + ["sxx_disp1", "sxx_disp3"]), flush=True)
+
+    results = cc.mesh_series(N_LIST, 6, a.max_seconds, lambda n: f"n = {n}",
+                             lambda n: cc.in_work_folder(f"perinom_fem_hole_n{n}_", a.keep, f"n_{n}", solve, n),
+                             report)
 
     # sanity checks: equilibrium (the roller x = 0 takes the whole load, the roller y = 0
     # nothing in total), plane strain, the far field
@@ -387,8 +248,8 @@ def main():
     out = {}
     for key in KEYS:
         f = [r[key] for r in results]
-        p, lim = richardson(*f[-3:])
-        p_prev, lim_prev = richardson(*f[-4:-1]) if len(f) >= 4 else (np.nan, np.nan)
+        p, lim = cc.richardson_monotone(*f[-3:])
+        p_prev, lim_prev = cc.richardson_monotone(*f[-4:-1]) if len(f) >= 4 else (np.nan, np.nan)
         if not np.isfinite(lim):   # no monotone convergence left (e.g. round-off): the finest value
             lim = f[-1]
         out[key] = (p, lim, p_prev, lim_prev, f)
@@ -403,22 +264,16 @@ def main():
         f"{k[4:]} {out[k][1] / S:.6f}" for k in ("syy_disp", "syy_nodal", "syy_line")) + " (Kirsch: -1)")
 
     os.makedirs(a.out, exist_ok=True)
-    with open(os.path.join(a.out, "plate_hole.csv"), "w") as f:
-        f.write("h_m,elements,nodes," + ",".join(CSV_NAMES[k] for k in KEYS) + ",seconds\n")
-        for r in results:
-            f.write(f"{r['h']:.6g},{r['elements']},{r['nodes']}," + ",".join(f"{r[k]:.7e}" for k in KEYS)
-                    + f",{r['seconds']:.2f}\n")
-        f.write("0,0,0," + ",".join(f"{out[k][1]:.7e}" for k in KEYS) + ",0\n")   # h -> 0: Richardson
-    with open(os.path.join(a.out, "plate_hole_line.csv"), "w") as f:
-        f.write("y_m,sxx_pa,syy_pa,sxy_pa,szz_pa,ux_m,uy_m\n")
-        for row in fine["line"][::2]:   # the corner nodes
-            yy, a_, b_, c_, d_, uxx, uyy = row
-            f.write(f"{yy:.9g},{a_:.6e},{b_:.6e},{d_:.6e},{c_:.6e},{uxx:.7e},{uyy:.7e}\n")
+    cc.write_csv(os.path.join(a.out, "plate_hole.csv"),
+                 "h_m,elements,nodes," + ",".join(CSV_NAMES[k] for k in KEYS) + ",seconds",
+                 [cc.mesh_columns(r) + "," + ",".join(f"{r[k]:.7e}" for k in KEYS) + f",{r['seconds']:.2f}"
+                  for r in results]
+                 + ["0,0,0," + ",".join(f"{out[k][1]:.7e}" for k in KEYS) + ",0"])   # h -> 0: Richardson
+    cc.write_csv(os.path.join(a.out, "plate_hole_line.csv"), "y_m,sxx_pa,syy_pa,sxy_pa,szz_pa,ux_m,uy_m",
+                 [f"{yy:.9g},{a_:.6e},{b_:.6e},{d_:.6e},{c_:.6e},{uxx:.7e},{uyy:.7e}"
+                  for yy, a_, b_, c_, d_, uxx, uyy in fine["line"][::2]])   # the corner nodes
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(9.6, 3.6), dpi=100)
+    fig, (a1, a2) = cc.figure(2)
     yy = np.linspace(R, W, 400)
     a1.plot(yy * 1e3, (1 + R ** 2 / (2 * yy ** 2) + 3 * R ** 4 / (2 * yy ** 4)), "k--", lw=0.8,
             label="Kirsch (infinite plate)")
@@ -433,11 +288,7 @@ def main():
         a2.loglog(hs[err > 0] * 1e3, err[err > 0], "o-", label=key)
     a2.set(xlabel="h at the hole (mm)", ylabel="relative difference from extrapolated disp",
            title="hole-edge stress convergence")
-    for ax in (a1, a2):
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(a.out, "plate_hole_fem.png"))
+    cc.save_figure(fig, (a1, a2), os.path.join(a.out, "plate_hole_fem.png"))
     print("wrote plate_hole.csv, plate_hole_line.csv, plate_hole_fem.png in", a.out)
 
 

@@ -32,18 +32,9 @@ and matplotlib (Debian: python3-numpy python3-matplotlib). Runs single-threaded.
 import os
 import sys
 
-try:
-    import numpy as np
-except ImportError:  # e.g. a pyenv python3 first on PATH: fall back to Debian's, which has numpy
-    if os.path.exists("/usr/bin/python3") and os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3"):
-        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
-    raise
-
-import argparse
-import shutil
-import subprocess
-import tempfile
-import time
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ccx_common as cc   # the shared helpers (it re-runs this under /usr/bin/python3 without numpy)
+import numpy as np
 
 # ---- problem data (SI) ------------------------------------------------------------------
 W, H = 0.036, 0.072            # plate width and height, m
@@ -52,10 +43,6 @@ P = 200e3                      # top pressure, Pa
 XC = W / 2                     # centre line
 H_LIST = [4e-3, 2e-3, 1e-3, 0.5e-3, 0.25e-3]   # element sizes, m (W/h: 9, 18, 36, 72, 144)
 EXPECTED_TOP_UY = -0.4466e-3   # m, THEORY sec. 11
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-ENV = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_EQUATION_SOLVER="1",
-           CCX_NPROC_RESULTS="1", CCX_NPROC_STIFFNESS="1")
 
 
 # ---- step 1: mesh with gmsh -------------------------------------------------------------
@@ -74,36 +61,8 @@ Mesh.ElementOrder = 2; Mesh.SecondOrderIncomplete = 1;
 def mesh(h, work):
     """Returns node ids, coordinates (n x 2) and 8-node elements (m x 8, node ids, ccx order)."""
     nx, ny = round(W / h), round(H / h)
-    geo = os.path.join(work, "plate.geo")
-    msh = os.path.join(work, "plate.msh")
-    with open(geo, "w") as f:
-        f.write(GEO.format(W=W, H=H, nx1=nx + 1, ny1=ny + 1))
-    subprocess.run(["gmsh", "-2", geo, "-o", msh, "-format", "msh22", "-v", "1"],
-                   check=True, env=ENV, stdout=subprocess.DEVNULL)
-    lines = open(msh).read().split("\n")
-    i = lines.index("$Nodes")
-    n = int(lines[i + 1])
-    ids = np.empty(n, dtype=np.int64)
-    xy = np.empty((n, 2))
-    for k in range(n):
-        t = lines[i + 2 + k].split()
-        ids[k] = int(t[0])
-        xy[k] = float(t[1]), float(t[2])
-    i = lines.index("$Elements")
-    m = int(lines[i + 1])
-    elems = []
-    for k in range(m):
-        t = [int(v) for v in lines[i + 2 + k].split()]
-        if t[1] == 16:  # 8-node quad; gmsh and ccx both number corners 1-4, then mid-edges 12, 23, 34, 41
-            elems.append(t[3 + t[2]:])
-    elems = np.array(elems, dtype=np.int64)
+    ids, xy, elems = cc.quad8_mesh(cc.gmsh(GEO.format(W=W, H=H, nx1=nx + 1, ny1=ny + 1), work, "plate"))
     assert len(elems) == nx * ny, (len(elems), nx, ny)
-    # ccx wants counter-clockwise elements in the x-y plane
-    pos = {nid: k for k, nid in enumerate(ids)}
-    c = np.array([[xy[pos[v]] for v in e[:4]] for e in elems])
-    area2 = sum(c[:, a, 0] * c[:, (a + 1) % 4, 1] - c[:, (a + 1) % 4, 0] * c[:, a, 1] for a in range(4))
-    cw = area2 < 0
-    elems[cw] = elems[cw][:, [0, 3, 2, 1, 7, 6, 5, 4]]
     # gmsh leaves round-off of order 1e-14 m on the structured grid; snap to the exact
     # half-element grid (the mesh is structured, so every node lies on it)
     snapped = np.round(xy / (h / 2)) * (h / 2)
@@ -114,26 +73,14 @@ def mesh(h, work):
 # ---- step 2: CalculiX input -------------------------------------------------------------
 def write_inp(path, ids, xy, elems, h):
     tol = 1e-6 * h
-    pos = {nid: k for k, nid in enumerate(ids)}
     bottom = ids[np.abs(xy[:, 1]) < tol]
     top_center = ids[(np.abs(xy[:, 1] - H) < tol) & (np.abs(xy[:, 0] - XC) < tol)]
     assert len(top_center) == 1
-    # top faces: CPE8 face k (P1..P4) joins corners k and k+1
-    dload = []
-    for eid, e in enumerate(elems, start=1):
-        for k in range(4):
-            a, b = xy[pos[e[k]]], xy[pos[e[(k + 1) % 4]]]
-            if abs(a[1] - H) < tol and abs(b[1] - H) < tol:
-                dload.append((eid, k + 1))
+    dload = cc.faces_on(ids, elems, np.abs(xy[:, 1] - H) < tol)   # the top faces
     assert len(dload) == round(W / h)
     with open(path, "w") as f:
-        f.write("*HEADING\nuniaxial compression plate, plane strain, CPE8\n*NODE, NSET=NALL\n")
-        for nid, (x, y) in zip(ids, xy):
-            f.write(f"{nid}, {x!r}, {y!r}, 0.0\n")
-        f.write("*ELEMENT, TYPE=CPE8, ELSET=EALL\n")
-        for eid, e in enumerate(elems, start=1):
-            f.write(f"{eid}, " + ", ".join(str(v) for v in e) + "\n")
-        f.write("*NSET, NSET=NBOT\n" + "".join(f"{v},\n" for v in bottom))
+        cc.write_mesh(f, "uniaxial compression plate, plane strain, CPE8", ids, xy, elems, "CPE8", fmt=repr)
+        cc.write_nset(f, "NBOT", bottom)
         f.write(f"*NSET, NSET=NTOPC\n{top_center[0]},\n")
         f.write(f"*MATERIAL, NAME=M\n*ELASTIC\n{E!r}, {NU!r}\n")
         f.write("*SOLID SECTION, ELSET=EALL, MATERIAL=M\n1.0\n")
@@ -149,59 +96,12 @@ def write_inp(path, ids, xy, elems, h):
 
 
 # ---- step 3: run ccx, read .dat and .frd ------------------------------------------------
-def parse_dat(path):
-    """Displacements {node: (ux, uy)} and the total reaction (fx, fy) of NBOT."""
-    u, total = {}, None
-    mode = None
-    for line in open(path):
-        s = line.strip()
-        if not s:
-            continue
-        if s.startswith("displacements"):
-            mode = "u"
-            continue
-        if s.startswith("total force"):
-            mode = "rf"
-            continue
-        if s[0].isalpha():
-            mode = None
-            continue
-        t = s.split()
-        if mode == "u":
-            u[int(t[0])] = (float(t[1]), float(t[2]))
-        elif mode == "rf":
-            total = (float(t[0]), float(t[1]))
-            mode = None
-    return u, total
-
-
-def parse_frd_stress(path):
-    """Nodal stresses {node: (sxx, syy, szz, sxy)} from the STRESS block of the .frd."""
-    s, inside = {}, False
-    for line in open(path):
-        if line.startswith(" -4"):
-            inside = line.split()[1] == "STRESS"
-            continue
-        if inside and line.startswith(" -3"):
-            inside = False
-        if inside and line.startswith(" -1"):
-            nid = int(line[3:13])
-            v = [float(line[13 + 12 * k: 25 + 12 * k]) for k in range(6)]  # SXX SYY SZZ SXY SYZ SZX
-            s[nid] = (v[0], v[1], v[2], v[3])
-    return s
-
-
-def solve(h, work):
+def solve(work, h):
     ids, xy, elems, nx, ny = mesh(h, work)
     tc = write_inp(os.path.join(work, "plate.inp"), ids, xy, elems, h)
-    t0 = time.time()
-    r = subprocess.run(["ccx", "-i", "plate"], cwd=work, env=ENV,
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    seconds = time.time() - t0
-    if r.returncode != 0 or "ERROR" in r.stdout:
-        sys.exit(f"ccx failed for h = {h}:\n{r.stdout[-3000:]}")
-    u, total = parse_dat(os.path.join(work, "plate.dat"))
-    st = parse_frd_stress(os.path.join(work, "plate.frd"))
+    seconds = cc.run_ccx(work, "plate", f"h = {h}")
+    u, (total,) = cc.parse_dat(os.path.join(work, "plate.dat"))
+    st = cc.parse_frd_stress(os.path.join(work, "plate.frd"))
     # the centre line x = XC (an element edge when nx is even, mid-edge nodes only when odd)
     line = sorted((xy[k, 1], nid) for k, nid in enumerate(ids) if abs(xy[k, 0] - XC) < 1e-6 * h)
     cl = np.array([(y, *u[nid], *st[nid]) for y, nid in line])   # y ux uy sxx syy szz sxy
@@ -213,53 +113,11 @@ def von_mises(sxx, syy, szz, sxy):
     return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3 * sxy ** 2)
 
 
-def richardson(f1, f2, f3, p=None):
-    """Richardson extrapolation of three values on meshes refined by 2 (coarse, medium, fine):
-    observed order p (unless given) and the limit."""
-    if p is None:
-        p = np.log((f1 - f2) / (f2 - f3)) / np.log(2.0)
-    return p, f3 + (f3 - f2) / (2 ** p - 1)
-
-
-def corner_exponent(nu):
-    """Williams' exponent lambda (u ~ r^lambda) of a 90-degree corner between a fixed and a free
-    edge, plane strain: kappa sin^2(lambda pi/2) = (1 + kappa)^2/4 - lambda^2, kappa = 3 - 4 nu.
-    The pollution it causes in a point displacement converges like h^(2 lambda)."""
-    k = 3 - 4 * nu
-    f = lambda l: k * np.sin(l * np.pi / 2) ** 2 - (1 + k) ** 2 / 4 + l ** 2
-    a, b = 0.5, 0.99
-    for _ in range(60):
-        m = (a + b) / 2
-        a, b = (a, m) if f(a) * f(m) <= 0 else (m, b)
-    return m
-
-
 # ---- step 4: run the meshes, check, write outputs ---------------------------------------
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--max-seconds", type=float, default=120.0,
-                    help="skip a mesh whose predicted ccx time (6 x the previous one) exceeds this (default 120)")
-    ap.add_argument("--keep", help="keep the work files in this folder")
-    ap.add_argument("--out", default=HERE, help="output folder (default: this script's)")
-    a = ap.parse_args()
-    for tool in ("gmsh", "ccx"):
-        if shutil.which(tool) is None:
-            sys.exit(f"{tool} not found: apt-get install gmsh calculix-ccx")
-    results = []
-    for h in H_LIST:
-        if results and results[-1]["seconds"] * 6 > a.max_seconds:
-            print(f"h = {h * 1e3:g} mm skipped: the previous mesh took {results[-1]['seconds']:.1f} s")
-            break
-        work = tempfile.mkdtemp(prefix=f"perinom_fem_h{h * 1e3:g}mm_")
-        try:
-            r = solve(h, work)
-        finally:
-            if a.keep:
-                dst = os.path.join(a.keep, f"h_{h * 1e3:g}mm")
-                shutil.rmtree(dst, ignore_errors=True)
-                shutil.copytree(work, dst)
-            shutil.rmtree(work)
-        results.append(r)
+    a = cc.parse_args(__doc__, max_seconds=120.0)
+
+    def report(h, r):
         fx, fy = r["reaction"]
         cl = r["centerline"]
         mid = np.abs(cl[:, 0] - H / 2) < 0.25 * H   # middle half of the height
@@ -267,6 +125,11 @@ def main():
               f"top-centre uy = {r['uy']:.7e} m  ccx {r['seconds']:6.1f} s  "
               f"reaction ({fx:.6e}, {fy:.9e}) N/m  centre-line syy in [{cl[mid, 4].min():.1f}, "
               f"{cl[mid, 4].max():.1f}] Pa over 0.25H..0.75H")
+
+    results = cc.mesh_series(H_LIST, 6, a.max_seconds, lambda h: f"h = {h * 1e3:g} mm",
+                             lambda h: cc.in_work_folder(f"perinom_fem_h{h * 1e3:g}mm_", a.keep, f"h_{h * 1e3:g}mm",
+                                                         solve, h),
+                             report)
 
     # sanity checks
     for r in results:
@@ -283,10 +146,10 @@ def main():
     # mesh convergence: Richardson on the three finest meshes; its spread against the
     # previous three and against the theoretical order 2 lambda estimates its own error
     uys = [r["uy"] for r in results]
-    p, lim = richardson(*uys[-3:])
-    p_prev, lim_prev = richardson(*uys[-4:-1]) if len(uys) >= 4 else (np.nan, np.nan)
-    lam = corner_exponent(NU)
-    _, lim_theory = richardson(*uys[-3:], p=2 * lam)
+    p, lim = cc.richardson(*uys[-3:])
+    p_prev, lim_prev = cc.richardson(*uys[-4:-1]) if len(uys) >= 4 else (np.nan, np.nan)
+    lam = cc.corner_exponent(3 - 4 * NU)   # plane strain
+    _, lim_theory = cc.richardson(*uys[-3:], p=2 * lam)
     err_fine = abs(lim - uys[-1])
     # the .dat prints 7 significant digits: half a unit of the last one, carried through the
     # extrapolation lim = (1 + c) f3 - c f2, c = 1/(2^p - 1), bounds what the data can resolve
@@ -304,22 +167,16 @@ def main():
           f"0.25H..0.75H, max |szz - nu (sxx + syy)| = {np.abs(szz - NU * (sxx + syy)).max():.2g} Pa")
 
     os.makedirs(a.out, exist_ok=True)
-    with open(os.path.join(a.out, "uniaxial_compression_top_center.csv"), "w") as f:
-        f.write("h_m,elements,nodes,top_center_uy_m,seconds\n")
-        for r in results:
-            f.write(f"{r['h']:.6g},{r['elements']},{r['nodes']},{r['uy']:.7e},{r['seconds']:.2f}\n")
-        f.write(f"0,0,0,{lim:.7e},0\n")   # h -> 0: Richardson extrapolation of the three finest
-    with open(os.path.join(a.out, "uniaxial_compression_centerline.csv"), "w") as f:
-        f.write("y_m,ux_m,uy_m,von_mises_pa,sxx_pa,syy_pa,szz_pa,sxy_pa\n")
-        for row in cl:
-            yy, uxx, uyy, a_, b_, c_, d_ = row
-            f.write(f"{yy:.9g},{uxx:.7e},{uyy:.7e},{von_mises(a_, b_, c_, d_):.6e},"
-                    f"{a_:.6e},{b_:.6e},{c_:.6e},{d_:.6e}\n")
+    cc.write_csv(os.path.join(a.out, "uniaxial_compression_top_center.csv"),
+                 "h_m,elements,nodes,top_center_uy_m,seconds",
+                 [f"{cc.mesh_columns(r)},{r['uy']:.7e},{r['seconds']:.2f}" for r in results]
+                 + [f"0,0,0,{lim:.7e},0"])   # h -> 0: Richardson extrapolation of the three finest
+    cc.write_csv(os.path.join(a.out, "uniaxial_compression_centerline.csv"),
+                 "y_m,ux_m,uy_m,von_mises_pa,sxx_pa,syy_pa,szz_pa,sxy_pa",
+                 [f"{yy:.9g},{uxx:.7e},{uyy:.7e},{von_mises(a_, b_, c_, d_):.6e},"
+                  f"{a_:.6e},{b_:.6e},{c_:.6e},{d_:.6e}" for yy, uxx, uyy, a_, b_, c_, d_ in cl])
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(9.6, 3.6), dpi=100)
+    fig, (a1, a2, a3) = cc.figure(3)
     for r in results:
         c = r["centerline"]
         lab = f"h = {r['h'] * 1e3:g} mm"
@@ -334,11 +191,7 @@ def main():
     a3.set(xlabel="h (mm)", ylabel="error (mm)", title="top-centre u_y convergence")
     a3.set_xticks(hs * 1e3, [f"{v * 1e3:g}" for v in hs])
     a3.minorticks_off()
-    for ax in (a1, a2, a3):
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(a.out, "uniaxial_compression_fem.png"))
+    cc.save_figure(fig, (a1, a2, a3), os.path.join(a.out, "uniaxial_compression_fem.png"))
     print("wrote", ", ".join(f"uniaxial_compression_{s}" for s in ("top_center.csv", "centerline.csv", "fem.png")),
           "in", a.out)
 

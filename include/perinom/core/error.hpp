@@ -1,5 +1,6 @@
 #pragma once
 /// @file Errors that carry context: which key, which particle, which sizes.
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -17,6 +18,15 @@ class InputError : public std::runtime_error {
 class SolveError : public std::runtime_error {
  public:
   explicit SolveError(const std::string& what) : std::runtime_error(what) {}
+};
+
+/// A state failed the NaN/Inf guard: a force, an energy or a field to be written is not
+/// finite. `step` is the iteration or time step that failed; the solver has put the last
+/// state that passed the guard back into its output vectors.
+class DivergenceError : public SolveError {
+ public:
+  DivergenceError(const std::string& what, std::int64_t step) : SolveError(what), step(step) {}
+  std::int64_t step;
 };
 
 }  // namespace perinom

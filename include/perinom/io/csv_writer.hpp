@@ -17,7 +17,8 @@ class CsvWriter {
   explicit CsvWriter(std::string path);
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;
-  /// Closes (and so publishes) the file if close() was not called; errors are swallowed.
+  /// If close() was not called (an exception cut the writing short), closes and removes
+  /// path + ".tmp": an unfinished file is never published.
   ~CsvWriter();
 
   /// Writes the column names, once, before any row. Names holding commas, quotes or
@@ -31,7 +32,8 @@ class CsvWriter {
   void row(const std::vector<double>& values);
 
   /// Flushes, closes and renames path + ".tmp" to path. Idempotent.
-  /// @throws perinom::InputError naming the path if writing or renaming failed.
+  /// @throws perinom::InputError naming the path if writing or renaming failed (the .tmp
+  /// file is removed first).
   void close();
 
   /// The final path (without ".tmp").

@@ -28,6 +28,10 @@ struct SolveReport {
   double stable_time_step = 0.0;     ///< Verlet only (s)
   double end_time = 0.0;             ///< Verlet only: simulated time reached (s)
   std::string failure;               ///< why the solve stopped early (NaN or Inf), or empty
+  /// The NaN/Inf guard stopped the solve at iteration or step `diverged_at`; `iterations`
+  /// and `end_time` then describe the last state that passed the guard (the one returned).
+  bool diverged = false;
+  std::int64_t diverged_at = -1;
   History history;
 };
 

@@ -1,0 +1,37 @@
+#pragma once
+// How much memory a scene will take, from the scene alone, before anything is allocated:
+// the particles from the lattice's cell counts (less the holes' share of the box), the
+// bonds from the horizon by counting lattice offsets (exact on a full box without jitter),
+// and the bytes from measured costs per bond and per particle of each model (calibrated
+// against the peak resident memory, VmHWM, of `perinom check`; docs/scene-format.md gives
+// the table and its accuracy). `perinom check` and `perinom run` print it and refuse a
+// scene that would not fit.
+#include <cstddef>
+#include <string>
+
+#include "perinom/scene/scene.hpp"
+
+namespace perinom::cli {
+
+struct MemoryEstimate {
+  double particles = 0.0;
+  double bonds = 0.0;
+  double bytes = 0.0;     ///< the expected peak resident size of the whole process
+  double baseline = 0.0;  ///< of which the process before the build (code, libraries)
+  std::string key;        ///< the key to change when it is too much: discretization.dx or the horizon's
+};
+
+MemoryEstimate estimate_memory(const Scene& scene);
+
+/// The memory a run may take: MemAvailable of /proc/meminfo, bounded by the address-space
+/// limit (ulimit -v) less what the process has mapped. 0 when unknown.
+double available_memory();
+
+/// This process's peak resident size so far (VmHWM of /proc/self/status), in bytes; 0 if unknown.
+double peak_resident_bytes();
+
+/// Prints the estimate and throws an InputError naming the key if it exceeds `limit` bytes
+/// (0: available_memory()). `limit_given` says the limit came from --max-memory.
+void require_memory(const Scene& scene, const MemoryEstimate& e, double limit, bool limit_given);
+
+}  // namespace perinom::cli

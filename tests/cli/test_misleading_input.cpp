@@ -1,0 +1,143 @@
+// Input that once gave a misleading outcome: a scene silently cut at a stray "---", an
+// internal error (exit 4) for a key or an index YAML or std::stoul could not take, a name
+// that put files outside the output folder, command-line numbers read loosely, a spacing
+// whose lattice count overflowed, and a message about the wrong key. Each now ends in exit
+// code 2 and one line naming what is wrong (or, for `plane: null`, in the documented
+// "null counts as absent").
+#include "../support/cli.hpp"
+
+using namespace cli_test;
+
+TEST_CASE("a second YAML document (a stray ---) is refused with the separator's line", "[cli]") {
+  const std::string s = with(tiny_scene, "material:\n", "---\nmaterial:\n");
+  require_rejected(s, {"scene.yaml:" + std::to_string(line_of(s, "---")) + ":", "second YAML document"});
+  const std::string end = with(tiny_scene, "material:\n", "...\nmaterial:\n");
+  require_rejected(end, {"scene.yaml:" + std::to_string(line_of(end, "...")) + ":", "second YAML document"});
+}
+
+TEST_CASE("a leading --- (an explicit document start) is one document and valid", "[cli]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << "# a comment\n---\n" + tiny_scene;
+  const Outcome o = perinom(dir, "check scene.yaml");
+  INFO("stderr: " << o.err);
+  CHECK(o.exit_code == 0);
+}
+
+TEST_CASE("a list or a mapping used as a key is bad input naming the key", "[cli]") {
+  SECTION("[a, b]: c at the top") {
+    const std::string s = with(tiny_scene, "dimension: 2\n", "dimension: 2\n[a, b]: c\n");
+    require_rejected(s, {at_line(s, "[a, b]: c", "[a, b]: a key must be a plain name")});
+  }
+  SECTION("? [a, b] in a mapping") {
+    const std::string s = with(tiny_scene, "  E: 1.0e9\n", "  E: 1.0e9\n  ? [a, b]\n");
+    require_rejected(s, {"material.[a, b]: a key must be a plain name"});
+  }
+  SECTION("{x: 1}: 2 in a list item") {
+    const std::string s = with(tiny_scene, "    fix: [x, y]\n", "    fix: [x, y]\n    {x: 1}: 2\n");
+    require_rejected(s, {"boundary[0].{x: 1}: a key must be a plain name"});
+  }
+}
+
+TEST_CASE("a --set list index too long for any integer is out of range, not an internal error", "[cli]") {
+  require_rejected(tiny_scene, {"--set boundary.99999999999999999999.pressure", "list index 99999999999999999999 is out of range"},
+                   "--set boundary.99999999999999999999.pressure=1");
+  require_rejected(tiny_scene, {"list index 2 is out of range"}, "--set boundary.2.pressure=1");
+  require_rejected(tiny_scene, {"list index 0002 is out of range"}, "--set boundary.0002.pressure=1");
+}
+
+TEST_CASE("a --set index with leading zeros still reaches its item", "[cli]") {
+  require_rejected(tiny_scene, {"boundary[1].pressure: must be a number"}, "--set boundary.0001.pressure=abc");
+}
+
+TEST_CASE("the name is a safe file name: letters, digits, _ - . but not . or ..", "[cli]") {
+  for (const std::string bad : {"\"..\"", "\".\"", "\"a b\"", "\"a\\nb\"", "\"a\\0b\"", "a/b", "\"a\\\\b\"", "\"\"", "\"a:b\"",
+                                "\"~\""}) {
+    DYNAMIC_SECTION("name: " << bad) {
+      const std::string s = with(tiny_scene, "name: tiny", "name: " + bad);
+      require_rejected(s, {at_line(s, "name:", "name: must be made of letters, digits")});
+    }
+  }
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << with(tiny_scene, "name: tiny", "name: Run-2.b_1");
+  const Outcome o = perinom(dir, "check scene.yaml");
+  INFO("stderr: " << o.err);
+  CHECK(o.exit_code == 0);
+}
+
+TEST_CASE("an empty --out is an error, not the default folder", "[cli]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  require_one_clear_error(perinom(dir, "run scene.yaml --out ''"), {"--out", "empty"});
+  CHECK_FALSE(fs::exists(dir.path / "out"));
+}
+
+TEST_CASE("command-line numbers are read whole and within their bounds", "[cli]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  for (const std::string bad : {"2x", "4294967297", "0", "-1", "1025", "", "1.5", " 2"}) {
+    DYNAMIC_SECTION("--threads '" << bad << "'") {
+      require_one_clear_error(perinom(dir, "check scene.yaml --threads '" + bad + "'"), {"--threads"});
+    }
+  }
+  SECTION("the bench and material-point options") {
+    require_one_clear_error(perinom(dir, "bench force --dimension 2 --n 4x"), {"--n", "'4x'"});
+    require_one_clear_error(perinom(dir, "bench force --dimension 4 --n 4"), {"--dimension", "out of range"});
+    require_one_clear_error(perinom(dir, "bench force --dimension 3 --n 2000"), {"--n: 2000^3 particles", "2e9"});
+    require_one_clear_error(perinom(dir, "bench force --dimension 2 --n 4 --stabilization 0.5x"), {"--stabilization"});
+    require_one_clear_error(perinom(dir, "material-point --test 2x"), {"--test", "'2x'"});
+    require_one_clear_error(perinom(dir, "material-point --substeps 99999999999999999999"), {"--substeps", "out of range"});
+  }
+  SECTION("1 and 2 threads are accepted") {
+    for (const char* n : {"1", "2"}) {
+      const Outcome o = perinom(dir, std::string("check scene.yaml --threads ") + n);
+      INFO("stderr: " << o.err);
+      CHECK(o.exit_code == 0);
+    }
+  }
+}
+
+TEST_CASE("a spacing whose lattice count overflows is refused by key, before any integer conversion", "[cli]") {
+  for (const std::string dx : {"1.0e-300", "1.0e-9", "1.0e308", "0.05"}) {
+    DYNAMIC_SECTION("dx = " << dx) {
+      const std::string s = with(tiny_scene, "dx: 0.001", "dx: " + dx);
+      require_rejected(s, {at_line(s, "dx:", "discretization.dx: ")});
+    }
+  }
+}
+
+TEST_CASE("a 1 m cube at dx = 0.1 mm is refused by key, a 3-D lattice count in double", "[cli]") {
+  const std::string s = R"(name: cube
+dimension: 3
+geometry: {box: {min: [0, 0, 0], max: [1, 1, 1]}}
+discretization: {dx: 1.0e-4, horizon: {ratio: 3.015}}
+material: {type: linear_elastic, E: 1.0e9, nu: 0.25, density: 1000.0}
+)";
+  require_rejected(s, {"scene.yaml:4: discretization.dx: gives about", "2e9"});
+}
+
+TEST_CASE("an unterminated quote is a YAML error with its line, not a message about another key", "[cli]") {
+  const std::string s = with(tiny_scene, "name: tiny", "name: \"tiny");
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << s;
+  const Outcome o = perinom(dir, "check scene.yaml");
+  require_one_clear_error(o, {"scene.yaml:", "not valid YAML"});
+  CHECK(o.err.find("dimension") == std::string::npos);
+}
+
+TEST_CASE("plane: null in a 3-D scene counts as absent, as the docs say of every null", "[cli]") {
+  const std::string s = R"(name: cube
+dimension: 3
+geometry: {box: {min: [0, 0, 0], max: [0.004, 0.004, 0.004]}}
+discretization: {dx: 0.001, horizon: {ratio: 2.015}}
+material: {type: linear_elastic, E: 1.0e9, nu: 0.25, density: 1000.0, plane: null}
+boundary:
+  - {region: bottom, fix: [x, y, z]}
+)";
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << s;
+  const Outcome o = perinom(dir, "check scene.yaml");
+  INFO("stderr: " << o.err);
+  CHECK(o.exit_code == 0);
+  // A plane condition given in 3-D is still refused.
+  require_rejected(with(s, "plane: null", "plane: strain"), {"material.plane: only 2-D scenes"});
+}

@@ -1,0 +1,118 @@
+// The output folder cannot mislead: an earlier run's files are removed at start (unless
+// --keep), the marker run.incomplete exists exactly while a run is going (a killed run
+// leaves it), summary.json carries the status, and no .tmp file survives a run that ends
+// by itself, however it ends.
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include "../support/cli.hpp"
+
+using namespace cli_test;
+
+namespace {
+
+/// Every file name in the folder, sorted.
+std::vector<std::string> files_in(const fs::path& dir) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+bool has_suffix(const std::string& s, const std::string& end) {
+  return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
+}
+
+void require_finished_folder(const fs::path& out) {
+  for (const auto& f : files_in(out)) {
+    INFO(f);
+    CHECK_FALSE(has_suffix(f, ".tmp"));
+    CHECK(f != "run.incomplete");
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a second run in a folder leaves none of an earlier run's files", "[cli]") {
+  ScratchDir dir;
+  // The earlier run: another name, snapshots every 10 iterations as .vtu and .csv, a line probe.
+  std::ofstream(dir.path / "old.yaml") << with(tiny_scene, "name: tiny", "name: old") +
+                                               "output: {vtk_every: 10, csv: true}\n";
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  REQUIRE(perinom(dir, "run old.yaml --out out").exit_code == 0);
+  const fs::path out = dir.path / "out";
+  REQUIRE(fs::exists(out / "old.pvd"));
+  REQUIRE(fs::exists(out / "old_000003.vtu"));
+  REQUIRE(fs::exists(out / "old_000003.csv"));
+  // What a killed run leaves, and a file of the user's own.
+  std::ofstream(out / "history.csv.tmp") << "partial";
+  std::ofstream(out / "old_000099.vtu.tmp") << "partial";
+  std::ofstream(out / "run.incomplete") << "stale";
+  std::ofstream(out / "notes.txt") << "mine";
+
+  SECTION("without --keep: only the new run's files and the user's") {
+    const Outcome o = perinom(dir, "run scene.yaml --out out --set output.vtk_every=0");
+    INFO("stderr: " << o.err);
+    REQUIRE(o.exit_code == 0);
+    CHECK(o.out.find("removed") != std::string::npos);
+    const std::vector<std::string> expected = {"history.csv", "notes.txt",     "probe_mid.csv",
+                                               "summary.json", "tiny.pvd", "tiny_000000.vtu"};
+    CHECK(files_in(out) == expected);
+  }
+  SECTION("with --keep: the earlier files stay, the stale temporaries and marker go") {
+    const Outcome o = perinom(dir, "run scene.yaml --out out --keep");
+    REQUIRE(o.exit_code == 0);
+    CHECK(fs::exists(out / "old.pvd"));
+    CHECK(fs::exists(out / "old_000003.vtu"));
+    CHECK(fs::exists(out / "tiny.pvd"));
+    require_finished_folder(out);
+  }
+}
+
+TEST_CASE("summary.json has the status, and the marker is gone after exit codes 0, 1 and 3", "[cli]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  struct Case {
+    const char* args;
+    int exit_code;
+    const char* status;
+  };
+  const Case cases[] = {
+      {"", 0, "converged"},
+      {"--set solver.max_iterations=5", 1, "not_converged"},
+      // Verlet at a hundred times its stable step.
+      {"--set solver.type=verlet --set solver.dt=1e-5 --set solver.steps=2000", 3, "diverged"},
+  };
+  for (const auto& c : cases) {
+    DYNAMIC_SECTION("exit code " << c.exit_code) {
+      const Outcome o = perinom(dir, std::string("run scene.yaml --out out ") + c.args);
+      INFO("stderr: " << o.err);
+      REQUIRE(o.exit_code == c.exit_code);
+      const std::string summary = slurp(dir.path / "out" / "summary.json");
+      CHECK(summary.find(std::string("\"status\": \"") + c.status + "\"") != std::string::npos);
+      require_finished_folder(dir.path / "out");
+    }
+  }
+}
+
+TEST_CASE("a killed run leaves its marker and no summary: it cannot pass for a finished one", "[cli]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  const std::string q = "'" + dir.path.string() + "'";
+  const std::string start = "cd " + q + " && { '" PERINOM_EXE "' run scene.yaml --out out --threads 1 "
+                            "--set solver.tolerance=1e-300 --set solver.displacement_tolerance=1e-300 "
+                            "--set solver.max_iterations=1000000000 >/dev/null 2>&1 & echo $! > pid; }";
+  REQUIRE(std::system(start.c_str()) == 0);
+  const pid_t pid = std::stoi(slurp(dir.path / "pid"));
+  // Wait (at most 30 s) until the solve is under way: the marker exists.
+  for (int k = 0; k < 300 && !fs::exists(dir.path / "out" / "run.incomplete"); ++k)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ::kill(pid, SIGKILL);
+  for (int k = 0; k < 100 && ::kill(pid, 0) == 0; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  CHECK(fs::exists(dir.path / "out" / "run.incomplete"));
+  CHECK_FALSE(fs::exists(dir.path / "out" / "summary.json"));
+}
