@@ -133,6 +133,7 @@ def main():
     ap.add_argument("--finds", default=os.path.join(ROOT, "fuzz_finds"), help="where finds are saved")
     ap.add_argument("--replay", help="run one scene file and report its outcome")
     args = ap.parse_args()
+    args.perinom = os.path.abspath(args.perinom)  # each mutant runs in a scratch folder
     memory = int(args.memory * 2**30)
     if os.environ.get("ASAN_OPTIONS") is not None or "sanitize" in args.perinom:
         memory = resource.RLIM_INFINITY  # ASan reserves terabytes of address space
