@@ -65,6 +65,11 @@ double hole_fraction(const BoxGeometry& g) {
 
 MemoryEstimate estimate_memory(const Scene& s) {
   MemoryEstimate e;
+  if (s.body_files.given()) {
+    e.known = false;
+    e.baseline = e.bytes = peak_resident_bytes();
+    return e;
+  }
   const int d = s.dim;
   const double dx = s.discretization.dx;
   double n[3] = {1, 1, 1}, h[3] = {dx, dx, dx}, cells = 1.0;
@@ -120,6 +125,11 @@ double peak_resident_bytes() { return proc_kib("/proc/self/status", "VmHWM:"); }
 
 void require_memory(const Scene& s, const MemoryEstimate& e, double limit, bool limit_given) {
   const auto mib = [](double b) { return b / 1048576.0; };
+  if (!e.known) {
+    std::printf("perinom: %s: no estimate before building (a body from files: its size is in the file)\n", s.name.c_str());
+    std::fflush(stdout);
+    return;
+  }
   std::printf("perinom: %s: estimate before building: %.4g particles, %.4g bonds, %.1f MiB\n", s.name.c_str(),
               e.particles, e.bonds, mib(e.bytes));
   std::fflush(stdout);

@@ -19,6 +19,9 @@ struct MemoryEstimate {
   double bytes = 0.0;     ///< the expected peak resident size of the whole process
   double baseline = 0.0;  ///< of which the process before the build (code, libraries)
   std::string key;        ///< the key to change when it is too much: discretization.dx or the horizon's
+  /// False for a body from files (geometry.mesh, geometry.points): its particle count is in
+  /// the file, which is read only when the problem is built; nothing is estimated then.
+  bool known = true;
 };
 
 MemoryEstimate estimate_memory(const Scene& scene);

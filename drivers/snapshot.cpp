@@ -65,7 +65,9 @@ void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const st
                                         {"von_mises", 1, vm.data()},    {"mean_stress", 1, mean.data()},
                                         {"volume", 1, p.cloud.volume.data()}};
   // The stress at the surface: each facet owner's stress reconstructed at its facets'
-  // centroids, area-weighted (the facets of a corner particle: their mean); NaN elsewhere.
+  // centroids, area-weighted (the facets of a corner particle: their mean); elsewhere the
+  // particle's own stress (finite: the snapshot guard refuses NaN, and a user's colour map
+  // then shows the whole body).
   std::vector<double> surface_sigma, surface_vm;
   const BoundaryFacets& facets = p.model->trace().facets();
   if (!facets.empty()) {
@@ -79,10 +81,11 @@ void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const st
       for (int c = 0; c < 9; ++c) surface_sigma[i * 9 + c] += facets.area[k] * s9[c];
       area[i] += facets.area[k];
     }
-    surface_vm.assign(n, NAN);
+    surface_vm.assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i) {
-      for (int c = 0; c < 9; ++c) surface_sigma[i * 9 + c] = area[i] > 0.0 ? surface_sigma[i * 9 + c] / area[i] : NAN;
-      if (area[i] > 0.0) surface_vm[i] = von_mises(surface_sigma.data() + i * 9);
+      for (int c = 0; c < 9; ++c)
+        surface_sigma[i * 9 + c] = area[i] > 0.0 ? surface_sigma[i * 9 + c] / area[i] : sigma[i * 9 + c];
+      surface_vm[i] = von_mises(surface_sigma.data() + i * 9);
     }
     fields.push_back({"surface_stress", 9, surface_sigma.data()});
     fields.push_back({"surface_von_mises", 1, surface_vm.data()});

@@ -109,7 +109,7 @@ void read_discretization(Fields f, Scene& s) {
   auto& d = s.discretization;
   d.dx = f.number("dx");
   if (!(d.dx > 0.0)) f.fail("dx", "must be positive");
-  check_lattice_size(f, s);
+  if (!s.body_files.given()) check_lattice_size(f, s);  // a body from files has no lattice
   Fields h = f.map("horizon");
   if (h.has("ratio") == h.has("neighbors"))
     f.fail("horizon", "give exactly one of ratio (delta = ratio * dx) or neighbors (k nearest)");

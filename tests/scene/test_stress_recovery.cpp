@@ -163,7 +163,7 @@ probes:
     CHECK((slurp(d / "out" / "pulled_000000.vtu").find("Name=\"surface_stress\"") != std::string::npos) == consistent);
     if (consistent) {
       // Row of particle 0 (the corner): its surface sxx is the applied 1 MPa; an interior
-      // particle's is NaN.
+      // particle's is its own stress (finite).
       std::istringstream rows(csv);
       std::string header, first;
       std::getline(rows, header);
