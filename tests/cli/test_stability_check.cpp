@@ -2,6 +2,8 @@
 // static run with a non-symmetric formulation, on the vibrating bar of the examples. Each
 // test runs the real binary in its own temporary folder.
 #include <catch2/catch.hpp>
+
+#include "../support/bar_run.hpp"
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -17,51 +19,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// A fresh folder of its own under the temp folder (concurrent test runs on one machine
-/// must not share one), removed with its contents when the last Outcome holding it goes.
-struct Scratch {
-  fs::path path;
-  explicit Scratch(const std::string& name) {
-    std::string pattern = (fs::temp_directory_path() / (name + "_XXXXXX")).string();
-    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp " + pattern);
-    path = pattern;
-  }
-  ~Scratch() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-};
-
-struct Outcome {
-  int exit_code = -1;
-  std::string out, err;
-  fs::path dir;
-  std::shared_ptr<Scratch> scratch;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// Runs `perinom COMMAND examples/vibrating_bar.yaml --set ...` in a fresh folder (kept
-/// while the Outcome lives, for the test's reads).
-Outcome bar(const std::string& name, const std::string& command, const std::string& sets) {
-  auto scratch = std::make_shared<Scratch>("perinom_stability_" + name);
-  const fs::path d = scratch->path;
-  const std::string cmd = "cd '" + d.string() + "' && '" PERINOM_EXE "' " + command + " '" PERINOM_SOURCE_DIR
-                          "/examples/vibrating_bar.yaml' " + sets + " >out.txt 2>err.txt";
-  const int status = std::system(cmd.c_str());
-  Outcome o;
-  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  o.out = slurp(d / "out.txt");
-  o.err = slurp(d / "err.txt");
-  o.dir = d;
-  o.scratch = scratch;
-  return o;
-}
+using bar_test::bar;
+using bar_test::Outcome;
 
 }  // namespace
 
