@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <unordered_map>
 
 namespace perinom {
@@ -97,6 +98,8 @@ void Loading::index_couplings() {
 template <class RAt>
 void Loading::solve_multipliers(const RAt& r_at) const {
   const std::size_t m = fixed.size();
+  if (coupled_constraint.size() != coupled.size() || lambda_.size() != m)
+    throw std::logic_error("Loading: index_couplings() was not called after the couplings changed");
   // (E_FF)^T lambda = -r_F by Jacobi sweeps: E_FF is its diagonal 1/scale plus the small
   // couplings among constrained dofs of one face (a reconstruction reads its neighbours on the
   // face), so the sweeps contract quickly; they stop at rounding.
