@@ -187,6 +187,12 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
     if (!s.body_files.mesh.empty() && !(p.facet_defect <= 1e-9))
       throw InputError(s.body_files.where + ": the mesh's boundary facets do not close it (divergence theorem defect " +
                        std::to_string(p.facet_defect) + "); is the mesh conforming?");
+    // The consistent formulation's boundary measure needs facets that close the body; an open
+    // facet file would be projected silently and the patch test lost with exit 0.
+    if (opt.formulation == Formulation::consistent && !facets.empty() && !(p.facet_defect <= 1e-9))
+      throw InputError(s.body_files.where + ": geometry.facets: the facets do not close the body the volumes fill "
+                       "(divergence theorem defect " + std::to_string(p.facet_defect) +
+                       "), which the consistent formulation needs; complete them, or use formulation classical");
   } else if (opt.formulation == Formulation::consistent) {
     facets = lattice_facets(s.geometry, p.cloud);
   }

@@ -3,6 +3,7 @@
 // naming the key: a missing or unreadable mesh, a mesh without volume elements, an unknown
 // group, a side name on a mesh, the consistent formulation without facets.
 #include <algorithm>
+#include <sstream>
 
 #include "../support/cli_run.hpp"
 
@@ -167,6 +168,14 @@ TEST_CASE("a point file runs classical, and the consistent formulation needs its
   INFO("stderr: " << f.err);
   CHECK(f.exit_code == 0);
   CHECK(f.out.find("bottom (4), top (4), left (4), right (4) facets") != std::string::npos);
+  // Facets that do not close the body (the right side missing) would lose the patch test
+  // silently: the consistent formulation refuses them by key.
+  std::string open_facets;
+  std::istringstream rows(facets_csv());
+  for (std::string row; std::getline(rows, row);)
+    if (row.find(",right") == std::string::npos) open_facets += row + "\n";
+  require_rejected(with_facets, {"geometry.facets", "do not close the body"},
+                   {{"cloud.csv", points_csv()}, {"facets.csv", open_facets}});
   // A bad header names the key and the line.
   require_rejected(points_scene, {"geometry.points", "line 1", "x,y,volume"}, {{"cloud.csv", "x,y,v\n0,0,1\n"}});
 }
