@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "perinom/core/error.hpp"
+#include "perinom/core/thread_governor.hpp"
 #include "perinom/core/timer.hpp"
 #include "perinom/geometry/lattice.hpp"
 #include "perinom/models/correspondence.hpp"
@@ -36,13 +37,17 @@ double stream_triad_gbs() {
   return 3.0 * sizeof(double) * n / best / 1e9 + 0.0 * a[n / 2];
 }
 
-/// Seconds per call of f: after a warm-up call, at least 3 calls and 2 s.
+/// Seconds per call of f: after a warm-up call, at least 3 calls and 2 s. The calls are
+/// governed as a solver's iterations are (core/thread_governor.hpp; PERINOM_THREAD_GOVERNOR=off
+/// times the fixed team).
 template <class F>
 double seconds_per_call(F&& f) {
   f();
   int calls = 0;
+  ThreadGovernor governor;
   const double t0 = wall_seconds();
   while (calls < 3 || wall_seconds() - t0 < 2.0) {
+    governor.tick();
     f();
     ++calls;
   }

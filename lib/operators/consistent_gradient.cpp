@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "perinom/core/parallel.hpp"
+#include "perinom/core/thread_governor.hpp"
 
 namespace perinom {
 namespace {
@@ -134,6 +135,7 @@ std::vector<double> consistent_gradient_weights(const PointCloud& cloud, const F
   rep.converged = true;
   std::vector<double> e(n), x(n), r(n), z(n), p(n), q(n);
   double change = 0.0, size = 0.0;
+  ThreadGovernor governor;
   for (int b = 0; b < d; ++b) {
     for (std::size_t j = 0; j < n; ++j) e[j] = c[j * d + b] - current[j * d + b];
     const double e_norm = std::sqrt(dot(e, e));
@@ -156,6 +158,7 @@ std::vector<double> consistent_gradient_weights(const PointCloud& cloud, const F
       p = z;
       double rz = dot(r, z), rnorm = true_res;
       while (rnorm > options.tolerance * r0 && it < options.max_iterations) {
+        governor.tick();
         L.apply(p.data(), q.data());
         const double alpha = rz / dot(p, q);
         for (std::size_t j = 0; j < n; ++j) x[j] += alpha * p[j], r[j] -= alpha * q[j];

@@ -1,5 +1,7 @@
 #include "perinom/operators/second_order_stabilization.hpp"
 
+#include "perinom/core/parallel.hpp"
+
 namespace perinom {
 
 SecondOrderStabilization::SecondOrderStabilization(const PointCloud& cloud, const BondWeights& weights,
@@ -65,19 +67,16 @@ void SecondOrderStabilization::add_force(const double* f, const double* grad, co
 }
 
 double SecondOrderStabilization::energy(const double* f, const double* grad, const double* hess) const {
-  const std::size_t n = op_->rows();
-  double W = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : W)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!(cv_[i] > 0.0)) continue;
+  // parallel_sums: the same sum for any thread count (a reduction clause is not).
+  return parallel_sums<1>(op_->rows(), [&](std::size_t i, double* acc) {
+    if (!(cv_[i] > 0.0)) return;
     double s = 0.0;
     for (Offset k = op_->offsets()[i]; k < op_->offsets()[i + 1]; ++k) {
       const double zk = z(i, op_->cols()[k], f, grad, hess);
       s += wv_[k] * zk * zk;
     }
-    W += 0.5 * cv_[i] * s;
-  }
-  return W;
+    acc[0] += 0.5 * cv_[i] * s;
+  })[0];
 }
 
 void SecondOrderStabilization::add_row(std::size_t r, const std::function<void(ParticleId, double)>& add) const {

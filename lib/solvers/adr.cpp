@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "perinom/core/error.hpp"
+#include "perinom/core/thread_governor.hpp"
 #include "perinom/solvers/vector_ops.hpp"
 
 namespace perinom {
@@ -66,7 +67,9 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     throw DivergenceError("ADR: the internal force of the starting state is NaN or Inf", rep.iterations);
   }
   bool first = true, converged = false;
+  ThreadGovernor governor;
   while (rep.iterations < opt_.max_iterations) {
+    governor.tick();
     // The seed's criterion (eq. 33) alone stops a solve that has barely moved; the
     // residual criterion makes sure it is in equilibrium.
     if (!first && r <= opt_.tolerance && du <= opt_.displacement_tolerance) {

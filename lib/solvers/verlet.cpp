@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "perinom/core/error.hpp"
+#include "perinom/core/thread_governor.hpp"
 #include "perinom/solvers/vector_ops.hpp"
 
 namespace perinom {
@@ -102,7 +103,9 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   record();
   ProgressSample sample;
   sample.limit = opt.steps;
+  ThreadGovernor governor;
   for (std::int64_t step = 1; step <= opt.steps; ++step) {
+    governor.tick();
     parallel_for(n, [&](std::size_t k) {
       v_old[k] = v[k];
       v[k] += 0.5 * dt * a[k];
