@@ -1,6 +1,6 @@
 // Resuming a solve from the state its checkpoint hook handed out part-way: ADR, Verlet and
-// the LBC load path end exactly where the uninterrupted solve ends, bit for bit, and the state
-// is what they continue from (a perturbed one ends elsewhere).
+// the load path (LBC, plain ADR) end exactly where the uninterrupted solve ends, bit for
+// bit, and the state is what they continue from (a perturbed one ends elsewhere).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -117,12 +117,14 @@ TEST_CASE("Verlet resumed from a state taken part-way ends bit for bit as the un
   CHECK_FALSE(same_bits(off.history.values, whole.history.values));
 }
 
-TEST_CASE("an LBC load path resumed after a committed step ends bit for bit as the uninterrupted one", "[solvers][checkpoint][load_path]") {
+TEST_CASE("a load path resumed after a committed step ends bit for bit as the uninterrupted one", "[solvers][checkpoint][load_path]") {
   // The biaxial example coarsened, three steps a stage: plastic from the first step.
   const std::vector<std::string> set = {"stages.0.steps=3", "stages.1.steps=3", "discretization.dx=0.005"};
   const auto build = [&] { return build_problem(read_scene(PERINOM_SOURCE_DIR "/examples/biaxial_compression.yaml", set)); };
   LoadPathOptions opt;
   opt.adr.tolerance = opt.adr.displacement_tolerance = 1e-9;
+  opt.scheme = GENERATE(LoadPathScheme::lbc, LoadPathScheme::every_iteration);
+  INFO((opt.scheme == LoadPathScheme::lbc ? "LBC" : "plain ADR, the return map committed every iteration"));
   Problem whole_p = build();
   std::vector<double> u;
   const SolveReport whole = solve_load_path(*whole_p.model, whole_p.stages, opt, u);
