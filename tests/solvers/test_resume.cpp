@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/cli.hpp"
 #include "perinom/scene/problem.hpp"
 #include "perinom/solvers/adr.hpp"
 #include "perinom/solvers/load_path.hpp"
@@ -88,7 +89,12 @@ TEST_CASE("ADR resumed from a state taken part-way ends bit for bit as the unint
 }
 
 TEST_CASE("Verlet resumed from a state taken part-way ends bit for bit as the uninterrupted run", "[solvers][checkpoint]") {
-  Problem p = build_problem(parse_scene(bar, "bar"));
+  // Pulled by a traction, or by its right face moved (a Galerkin support whose multipliers
+  // do the external work).
+  const std::string right = GENERATE(std::string("traction: [1.0e6, 0]"), std::string("displacement: {x: 1.0e-5}, at: face"));
+  INFO("right end: " << right);
+  Problem p = build_problem(parse_scene(cli_test::with(bar, "traction: [1.0e6, 0]", right), "bar"));
+  REQUIRE(p.loading.galerkin() == (right.find("face") != std::string::npos));
   VerletOptions opt;
   opt.steps = 300, opt.history_every = 7, opt.ramp_time = 100 * 0.8 * stable_time_step(*p.model);
   std::vector<double> u, v;
@@ -99,6 +105,7 @@ TEST_CASE("Verlet resumed from a state taken part-way ends bit for bit as the un
   solve_verlet(*p.model, p.loading, opt, u_ck, v_ck, nullptr, {}, keep_all(states, 90));
   CHECK(same_bits(u_ck, u));
   REQUIRE(states.size() == 3);
+  CHECK(states[0].multipliers.size() == (p.loading.galerkin() ? p.loading.fixed.size() : 0));
   for (const VerletState& s : states) {  // during the ramp (90) and after it (180, 270)
     INFO("resumed at step " << s.step);
     std::vector<double> u_resumed, v_resumed;
