@@ -98,6 +98,9 @@ void Restart::check(const Problem& p) const {
                      std::to_string(dofs) + " degrees of freedom, the scene builds " +
                      std::to_string(p.physics().particles()) + " and " + std::to_string(p.physics().dofs()) +
                      " (has a mesh or point file changed?)");
+  if (static_cast<std::uint64_t>(file_.integer("positions")) != positions_fingerprint(p))
+    throw InputError("--restart " + dir_ + ": the checkpoint's particles are not where the scene places them "
+                     "(has a mesh or point file changed?)");
 }
 
 }  // namespace perinom::cli

@@ -2,7 +2,7 @@
 // perinom run SCENE --restart DIR: the run resumes from DIR/checkpoint.bin and ends as the
 // uninterrupted run would have, bit for bit, if the checkpoint was written for this scene:
 // the same keys and values after --set (the `output` section aside, which changes what is
-// written, not what is solved), the same solver, the same particle and dof counts.
+// written, not what is solved), the same solver, the same particles (count, dofs, positions).
 //   - The output folder is --out DIR2, or DIR itself (resuming in place).
 //   - In place, what the interrupted run wrote after the checkpoint is removed like an
 //     earlier run's files, but not the checkpoint nor the snapshots it lists; into another
@@ -29,7 +29,8 @@ class Restart {
   std::set<std::string> files() const;
   /// Copies files() but the checkpoint into `out`, unless in place.
   void bring_snapshots(const std::string& out) const;
-  /// After the build: the particle and dof counts are the scene's. @throws InputError.
+  /// After the build: the particle and dof counts and the positions are the scene's.
+  /// @throws InputError.
   void check(const Problem& p) const;
 
   const io::Checkpoint& checkpoint() const { return file_; }

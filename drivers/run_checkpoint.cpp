@@ -15,6 +15,7 @@ io::Checkpoint common(const Problem& p, const RunProgress& run) {
   c.put("scene", p.scene.canonical);
   c.put_integer("particles", static_cast<std::int64_t>(p.physics().particles()));
   c.put_integer("dofs", static_cast<std::int64_t>(p.physics().dofs()));
+  c.put_integer("positions", static_cast<std::int64_t>(positions_fingerprint(p)));
   c.put("solver", checkpoint_solver(p.scene));
   std::vector<double> times;
   std::string files;
@@ -37,6 +38,10 @@ int small(const io::Checkpoint& c, const std::string& name) {
 }
 
 }  // namespace
+
+std::uint64_t positions_fingerprint(const Problem& p) {
+  return io::fnv1a64(p.cloud.x.data(), p.cloud.x.size() * sizeof(double));
+}
 
 std::string checkpoint_solver(const Scene& scene) {
   return scene.load_path() ? "load_path" : scene.solver.type == "verlet" ? "verlet" : "adr";

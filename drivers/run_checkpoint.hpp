@@ -2,8 +2,8 @@
 // The checkpoints of `perinom run` (output.checkpoint_every): which records a checkpoint.bin
 // holds, written from a solver's state and read back into one. The file format is
 // io/checkpoint.hpp; resuming a run from one is restart.hpp.
-//   what it was written for: scene (Scene::canonical), particles, dofs, solver (adr, verlet
-//     or load_path)
+//   what it was written for: scene (Scene::canonical), particles, dofs, positions (a
+//     fingerprint of the particles' reference positions), solver (adr, verlet or load_path)
 //   the run's progress: snapshot_times, snapshot_files (one name a line), last_snapshot,
 //     probe_rows with probe_columns (a load path's point-probe histories)
 //   the solver's state, every field of AdrState, VerletState or LoadPathState under its
@@ -34,6 +34,10 @@ struct RunProgress {
   std::int64_t last_snapshot = -1;
   std::vector<std::vector<double>> probe_rows;
 };
+
+/// FNV-1a 64 of the particles' reference positions (their bytes): a mesh or point file
+/// changed under the same scene text moves them.
+std::uint64_t positions_fingerprint(const Problem& p);
 
 /// "adr", "verlet" or "load_path": the solver state a scene's checkpoints hold.
 std::string checkpoint_solver(const Scene& scene);

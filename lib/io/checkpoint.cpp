@@ -17,12 +17,6 @@ namespace {
 constexpr char kMagic[8] = {'P', 'E', 'R', 'I', 'N', 'O', 'M', 'C'};
 enum Kind : std::uint8_t { kReals = 1, kIntegers = 2, kText = 3 };
 
-std::uint64_t fnv1a(const char* data, std::size_t n) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (std::size_t k = 0; k < n; ++k) h = (h ^ static_cast<unsigned char>(data[k])) * 1099511628211ull;
-  return h;
-}
-
 // Little-endian by shifts: the same bytes on any machine.
 void put_u(std::string& out, std::uint64_t v, int bytes) {
   for (int b = 0; b < bytes; ++b) out += static_cast<char>((v >> (8 * b)) & 0xff);
@@ -63,6 +57,13 @@ struct Reader {
 const char* kind_name(Kind k) { return k == kReals ? "reals" : k == kIntegers ? "whole numbers" : "text"; }
 
 }  // namespace
+
+std::uint64_t fnv1a64(const void* data, std::size_t n) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  std::uint64_t h = 14695981039346656037ull;
+  for (std::size_t k = 0; k < n; ++k) h = (h ^ bytes[k]) * 1099511628211ull;
+  return h;
+}
 
 void Checkpoint::put(const std::string& name, std::vector<double> values) { reals_[name] = std::move(values); }
 void Checkpoint::put(const std::string& name, std::vector<std::int64_t> values) { integers_[name] = std::move(values); }
@@ -115,7 +116,7 @@ std::string encode(const Checkpoint& c) {
     put_header(out, kText, name, text.size());
     out += text;
   }
-  put_u(out, fnv1a(out.data(), out.size()), 8);
+  put_u(out, fnv1a64(out.data(), out.size()), 8);
   return out;
 }
 
@@ -129,7 +130,7 @@ Checkpoint decode(const std::string& bytes, const std::string& source) {
                      std::to_string(checkpoint_format_version));
   in.need(4 + 8);  // the record count and the checksum
   Reader tail{bytes, source, bytes.size() - 8};
-  if (tail.u(8) != fnv1a(bytes.data(), bytes.size() - 8))
+  if (tail.u(8) != fnv1a64(bytes.data(), bytes.size() - 8))
     throw InputError(source + ": the checkpoint is damaged or truncated (its checksum does not match)");
   const std::string body = bytes.substr(0, bytes.size() - 8);
   Reader r{body, source, in.at};

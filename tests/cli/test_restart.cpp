@@ -166,6 +166,33 @@ TEST_CASE("a checkpoint of another scene, a damaged one and a folder without one
   }
 }
 
+TEST_CASE("a checkpoint is refused when the point file under the same scene text has moved a particle", "[cli][checkpoint]") {
+  ScratchDir d;
+  const auto write_cloud = [&](double shift) {
+    std::ofstream csv(d.path / "cloud.csv");
+    csv << "x,y,volume\n";
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) csv << 0.0005 + 0.001 * i + (i + j == 6 ? shift : 0.0) << "," << 0.0005 + 0.001 * j << ",1e-6\n";
+  };
+  write_cloud(0.0);
+  std::ofstream(d.path / "scene.yaml") << R"(name: points
+dimension: 2
+geometry: {points: cloud.csv}
+discretization: {dx: 0.001, horizon: {ratio: 2.015}}
+material: {type: linear_elastic, E: 1.0e9, nu: 0.25, density: 1000.0}
+model: {formulation: classical, operator_order: 1}
+boundary:
+  - {region: {box: {min: [0.0, 0.0], max: [0.004, 0.001]}}, fix: [x, y]}
+  - {region: {box: {min: [0.0, 0.003], max: [0.004, 0.004]}}, displacement: {y: 1.0e-6}}
+output: {checkpoint_every: 5}
+)";
+  require_ok(perinom(d, "run scene.yaml --out written"));
+  require_ok(perinom(d, "run scene.yaml --restart written --out again"));  // the same cloud resumes
+  write_cloud(1e-5);
+  require_one_clear_error(perinom(d, "run scene.yaml --restart written --out moved"),
+                          {"--restart written:", "particles are not where the scene places them"});
+}
+
 TEST_CASE("Newton solves are not checkpointed, and say so", "[cli][checkpoint]") {
   require_rejected(with(tiny_scene, "type: adr", "type: newton") + "output: {checkpoint_every: 10}\n",
                    {"output.checkpoint_every", "Newton solves are not checkpointed"});

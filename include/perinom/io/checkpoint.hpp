@@ -50,6 +50,10 @@ class Checkpoint {
   std::map<std::string, std::string> texts_;
 };
 
+/// FNV-1a 64 of `bytes` bytes at `data`: the file's checksum, and a fingerprint of arrays
+/// a checkpoint must match (the particles' positions).
+std::uint64_t fnv1a64(const void* data, std::size_t bytes);
+
 /// The file's bytes, and back. decode throws InputError naming `source` for a file that is
 /// not a checkpoint, of another format version, truncated, or whose checksum fails.
 std::string encode(const Checkpoint& c);
