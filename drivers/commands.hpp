@@ -14,6 +14,7 @@ struct Options {
   std::vector<std::string> positional, overrides;
   int threads = 0;                ///< 0: the OpenMP default (the available cores)
   bool keep = false;              ///< run: keep an earlier run's files in the output folder
+  std::string restart;            ///< run: resume from the checkpoint in this folder (--restart)
   double max_memory = 0.0;        ///< bytes a scene may need (--max-memory); 0: the available memory
   int dimension = 3;
   long n = 20;

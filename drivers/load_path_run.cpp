@@ -75,7 +75,8 @@ void ProbeHistory::write(const Problem& p, const std::string& dir) const {
 }
 
 SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double>& u, io::PvdSeries& series, ProbeHistory& probes,
-                          std::int64_t& last_snapshot) {
+                          std::int64_t& last_snapshot, const Checkpoints<LoadPathState>& checkpoints,
+                          const LoadPathState* resume) {
   const Scene& scene = p.scene;
   const LoadPathOptions opt = load_path_options(scene.solver);
   int total = 0;
@@ -86,7 +87,7 @@ SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double
                                                      : "plain ADR, plastic update in every iteration");
   std::printf("  %5s %5s %6s %10s %6s %8s %8s %8s %10s %8s\n", "stage", "step", "factor", "iterations",
               "rounds", "flagged", "yielding", "plastic", "residual", "seconds");
-  std::int64_t done = 0;
+  std::int64_t done = resume ? steps_done(*resume, p.stages) : 0;  // load steps over all stages
   auto after_step = [&](const LoadStepRecord& r, const std::vector<double>& u) {
     ++done;
     probes.record(p, r, u);
@@ -102,7 +103,7 @@ SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double
       last_snapshot = done;
     }
   };
-  return solve_load_path(*p.model, p.stages, opt, u, nullptr, after_step);
+  return solve_load_path(*p.model, p.stages, opt, u, nullptr, after_step, checkpoints, resume);
 }
 
 io::Json load_path_newton_check(Problem& p, const std::vector<double>& u, const ProbeHistory& first) {

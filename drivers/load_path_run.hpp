@@ -25,8 +25,10 @@ struct ProbeHistory {
 /// Solves the load path into u with a per-step line on stdout, VTK snapshots after the
 /// steps output.vtk_steps names (or every output.vtk_every steps; last_snapshot is the last
 /// step written), and the probe histories. report.history has a row per load step.
+/// Checkpoints and a resumed state as solve_load_path takes them.
 SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double>& u, io::PvdSeries& series,
-                          ProbeHistory& probes, std::int64_t& last_snapshot);
+                          ProbeHistory& probes, std::int64_t& last_snapshot,
+                          const Checkpoints<LoadPathState>& checkpoints = {}, const LoadPathState* resume = nullptr);
 
 /// solver.check: newton on a load path: solves the same steps again with Newton from the
 /// virgin state, compares the final fields and every step's probe values, then restores the

@@ -3,11 +3,13 @@
 // finished run, a run still going or killed, or nothing of perinom's.
 //   - At start the folder is created and checked writable, the marker run.incomplete is
 //     written, and the files an earlier run left (summary.json, history.csv, load_steps.csv,
-//     *.vtu, *.pvd, probe_*.csv, snapshot CSVs NAME_NNNNNN.csv, and *.tmp of these) are
-//     removed, unless --keep.
+//     *.vtu, *.pvd, probe_*.csv, snapshot CSVs NAME_NNNNNN.csv, checkpoint.bin, and *.tmp
+//     of these) are removed, unless --keep; a run resumed in place (restart.hpp) spares
+//     the files of the run it continues.
 //   - summary.json is written last, with its "status".
 //   - The marker and any .tmp file are removed on every way out the program controls (the
 //     destructor runs on success, on exit codes 1 to 4 alike); only a kill leaves them.
+#include <set>
 #include <string>
 
 namespace perinom::cli {
@@ -17,8 +19,9 @@ class RunFolder {
   /// The marker's file name.
   static constexpr const char* marker = "run.incomplete";
 
-  /// Prepares `dir` as above. @throws InputError naming --out DIR if it cannot be written.
-  RunFolder(std::string dir, bool keep);
+  /// Prepares `dir` as above, sparing the files named in `spare`. @throws InputError naming
+  /// --out DIR if it cannot be written.
+  RunFolder(std::string dir, bool keep, const std::set<std::string>& spare = {});
   ~RunFolder();
   RunFolder(const RunFolder&) = delete;
   RunFolder& operator=(const RunFolder&) = delete;

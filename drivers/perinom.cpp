@@ -1,5 +1,5 @@
 // perinom: the command line program.
-//   perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N] [--keep] [--max-memory SIZE]
+//   perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N] [--keep] [--max-memory SIZE] [--restart DIR]
 //   perinom check SCENE [--set dotted.key=value]... [--max-memory SIZE] [--spectrum]
 //   perinom bench force --dimension 3 --n N [--threads T]
 //   perinom material-point [--test 1..7] [--substeps S] [--out DIR]
@@ -23,6 +23,7 @@ void usage() {
   std::fprintf(stderr,
                "usage:\n"
                "  perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N] [--keep] [--max-memory SIZE]\n"
+               "              [--restart DIR]\n"
                "  perinom check SCENE [--set dotted.key=value]... [--max-memory SIZE] [--spectrum]\n"
                "  perinom bench force --dimension 2|3 --n N [--threads T] [--stabilization C] [--storage auto|fused|assembled|matrix_free] [--single]\n"
                "  perinom material-point [--test 1..7] [--substeps S] [--out DIR]\n");
@@ -61,6 +62,9 @@ int main(int argc, char** argv) {
       if (a == "--out") {
         opt.out = value();
         if (opt.out.empty()) throw InputError("option --out: the folder name is empty");
+      } else if (a == "--restart") {
+        opt.restart = value();
+        if (opt.restart.empty()) throw InputError("option --restart: the folder name is empty");
       } else if (a == "--set") opt.overrides.push_back(value());
       else if (a == "--threads") opt.threads = static_cast<int>(integer(1, cli::max_threads));
       else if (a == "--dimension") opt.dimension = static_cast<int>(integer(2, 3));

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <set>
 
 #include "commands.hpp"
 #include "perinom/core/error.hpp"
@@ -16,14 +18,15 @@
 #include "perinom/solvers/adr.hpp"
 #include "perinom/core/timer.hpp"
 #include "perinom/solvers/newton.hpp"
-#include "perinom/solvers/verlet.hpp"
 #include "difference.hpp"
 #include "load_path_run.hpp"
 #include "memory_estimate.hpp"
 #include "output_folder.hpp"
 #include "plate_output.hpp"
 #include "reactions_output.hpp"
+#include "restart.hpp"
 #include "snapshot.hpp"
+#include "solve_scene.hpp"
 #include "stability_check.hpp"
 #include "terminal_progress.hpp"
 
@@ -97,15 +100,6 @@ Json plastic_summary(const PlasticPoints& plastic) {
   return j;
 }
 
-NewtonOptions newton_options(const SolverSpec& s) {
-  NewtonOptions o;
-  o.load_steps = s.load_steps;
-  o.line_search = s.line_search;
-  o.step_tolerance = s.step_tolerance;
-  if (s.type == "newton") o.tolerance = s.tolerance, o.max_iterations = static_cast<int>(s.max_iterations);
-  return o;
-}
-
 /// solver.check: newton. Solves again with Newton and reports how far apart the answers are.
 Json newton_check(Problem& p, const std::vector<double>& u) {
   std::vector<double> un;
@@ -156,16 +150,26 @@ int run(const Options& opt) {
   const Scene scene = read_scene(opt.positional[0], opt.overrides);
   const MemoryEstimate estimate = estimate_memory(scene);
   require_memory(scene, estimate, opt.max_memory > 0.0 ? opt.max_memory : available_memory(), opt.max_memory > 0.0);
-  const std::string dir = opt.out.empty() ? "out/" + scene.name : opt.out;
-  const RunFolder folder(dir, opt.keep);
+  // --restart DIR: the checkpoint is checked against the scene before anything is built,
+  // and the run continues in DIR unless --out names another folder.
+  const std::optional<Restart> restart =
+      opt.restart.empty() ? std::nullopt : std::optional<Restart>(std::in_place, opt.restart, scene);
+  const std::string dir = !opt.out.empty() ? opt.out : restart ? opt.restart : "out/" + scene.name;
+  const bool in_place = restart && restart->in_place(dir);
+  const RunFolder folder(dir, opt.keep, in_place ? restart->files() : std::set<std::string>{});
   if (folder.removed() > 0)
     std::printf("perinom: removed %d files of an earlier run from %s (--keep keeps them)\n", folder.removed(),
                 dir.c_str());
+  if (restart) restart->bring_snapshots(dir);
   std::printf("perinom: %s: building particles, families and operators\n", scene.name.c_str());
   std::fflush(stdout);
   Problem p = build_problem(scene, &timer);
   std::printf("perinom: %s: %zu particles, %zu bonds, %d threads, solver %s\n", scene.name.c_str(),
               p.cloud.size(), p.bonds, omp_get_max_threads(), scene.solver.type.c_str());
+  if (restart) {
+    restart->check(p);
+    std::printf("perinom: resuming from %s\n", restart->where().c_str());
+  }
   if (scene.model.kinematics == "finite_rotation" && has_surface_load(scene))
     std::printf("perinom: note: model.kinematics finite_rotation: %s\n",
                 scene.model.follower_pressure
@@ -181,44 +185,12 @@ int run(const Options& opt) {
                  scene.model.formulation.c_str(), scene.solver.energy_check ? "stops the run if it does" : "is off");
 
   io::PvdSeries series(dir, scene.name);
-  std::vector<double> u(p.physics().dofs(), 0.0), v;
+  std::vector<double> u(p.physics().dofs(), 0.0);
   std::int64_t last_snapshot = -1;
-  // ADR snapshots are stamped with the iteration, Verlet snapshots with the time (s).
   const bool dynamic = scene.solver.type == "verlet";
-  Observer observe{scene.output.vtk_every,
-                   [&](std::int64_t it, double t, const std::vector<double>& state) {
-                     add_snapshot(series, dynamic ? t : double(it), p, state, dir);
-                     last_snapshot = it;
-                   }};
-  TerminalProgress progress(scene.solver.type.c_str());
-  SolveReport rep;
   ProbeHistory probe_history;
   timer.start("solve");
-  {
-    if (scene.load_path()) {
-      rep = run_load_path(p, dir, u, series, probe_history, last_snapshot);
-    } else if (scene.solver.type == "adr") {
-      AdrOptions o;
-      o.tolerance = scene.solver.tolerance;
-      o.displacement_tolerance = scene.solver.displacement_tolerance;
-      o.max_iterations = scene.solver.max_iterations;
-      o.load_steps = scene.solver.load_steps;
-      o.history_every = scene.solver.history_every;
-      rep = solve_adr(p.physics(), p.loading, o, u, &progress, observe);
-    } else if (scene.solver.type == "newton") {
-      rep = solve_newton(p.physics(), p.loading, newton_options(scene.solver), u, &progress);
-    } else {
-      VerletOptions o;
-      o.dt = scene.solver.dt;
-      o.safety = scene.solver.safety;
-      o.steps = scene.solver.steps;
-      o.ramp_time = scene.solver.ramp_time;
-      o.history_every = scene.solver.history_every;
-      o.energy_check = scene.solver.energy_check;
-      o.energy_tolerance = scene.solver.energy_tolerance;
-      rep = solve_verlet(p.physics(), p.loading, o, u, v, &progress, observe);
-    }
-  }
+  const SolveReport rep = solve_scene(p, dir, u, series, probe_history, last_snapshot, restart ? &*restart : nullptr);
   const std::string& failure = rep.failure;
   timer.start("output");
   const std::int64_t steps_done = static_cast<std::int64_t>(rep.history.rows());
@@ -250,6 +222,7 @@ int run(const Options& opt) {
   summary["particles"] = p.cloud.size();
   summary["bonds"] = p.bonds;
   summary["threads"] = omp_get_max_threads();
+  if (restart) summary["restarted_from"] = restart->where();
   if (!p.pins.empty()) {
     Json constraints = Json::object();
     constraints["rigid_body"] = pins;

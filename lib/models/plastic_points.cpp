@@ -148,6 +148,15 @@ void PlasticPoints::reset() {
   std::fill(flagged_.begin(), flagged_.end(), std::uint8_t{0});
 }
 
+void PlasticPoints::restore(std::vector<Point> committed, std::vector<std::uint8_t> flags) {
+  if (committed.size() != size() || flags.size() != size())
+    throw std::invalid_argument("PlasticPoints::restore: " + std::to_string(committed.size()) + " states and " +
+                                std::to_string(flags.size()) + " flags for " + std::to_string(size()) + " particles");
+  committed_ = std::move(committed);
+  trial_ = committed_;
+  flagged_ = std::move(flags);
+}
+
 std::size_t PlasticPoints::flagged() const {
   return static_cast<std::size_t>(std::count(flagged_.begin(), flagged_.end(), std::uint8_t{1}));
 }

@@ -351,6 +351,14 @@ YAML::Node load_one_document(const std::string& text, const std::string& source)
                    " YAML documents; a scene is one document");
 }
 
+/// The scene without its `output` section (which changes what is written, not what is
+/// solved), as yaml-cpp writes it.
+std::string canonical_text(const YAML::Node& root) {
+  YAML::Node copy = YAML::Clone(root);
+  copy.remove("output");
+  return YAML::Dump(copy);
+}
+
 /// A name safe as a file and folder name on every system: letters, digits, '_', '-', '.',
 /// and not "." or ".." (which name folders that already exist).
 bool is_file_name(const std::string& name) {
@@ -368,6 +376,7 @@ Scene parse_scene(const std::string& text, const std::string& source,
   for (const auto& o : overrides) detail::apply_override(root, o);
   Scene s;
   s.source = source;
+  s.canonical = canonical_text(root);
   Fields top(root, "", source);
   s.name = top.text("name");
   if (!is_file_name(s.name))
@@ -402,6 +411,11 @@ Scene parse_scene(const std::string& text, const std::string& source,
       s.output.vtk_steps.push_back(step);
     }
     s.output.csv = o.boolean("csv", s.output.csv);
+    s.output.checkpoint_every = o.integer("checkpoint_every", 0);
+    if (s.output.checkpoint_every < 0) o.fail("checkpoint_every", "must be zero or positive");
+    if (s.output.checkpoint_every > 0 && s.solver.type == "newton")
+      o.fail("checkpoint_every", "Newton solves are not checkpointed (KINSOL's state between load steps is not "
+                                 "kept); use solver.type adr or lbc, or remove the key");
     o.finish();
   } else {
     top.mark("output");

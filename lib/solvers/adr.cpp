@@ -1,6 +1,7 @@
 #include "perinom/solvers/adr.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "perinom/core/error.hpp"
 #include "perinom/core/thread_governor.hpp"
@@ -19,6 +20,21 @@ AdrRelaxation::AdrRelaxation(Model& model, const AdrOptions& opt, Progress* prog
   sample_.limit = opt.max_iterations;
   sample_.load_steps = opt.load_steps;
   sample_.target = opt.tolerance;
+}
+
+void AdrRelaxation::resume(const AdrState& st) {
+  const std::size_t n = model_.dofs();
+  for (const auto* x : {&st.u, &st.v, &st.f, &st.f_old, &st.inv_lambda})
+    if (x->size() != n)
+      throw std::invalid_argument("AdrRelaxation::resume: a state vector holds " + std::to_string(x->size()) +
+                                  " values for " + std::to_string(n) + " dofs");
+  inv_lambda_ = st.inv_lambda, v_ = st.v, f_ = st.f, f_old_ = st.f_old;
+  resume_r_ = st.residual, resume_du_ = st.displacement_change;
+  resuming_ = true;
+}
+
+AdrState AdrRelaxation::state(const std::vector<double>& u, double r, double du, const SolveReport& rep) const {
+  return {sample_.load_step, rep.iterations, r, du, u, v_, f_, f_old_, inv_lambda_, rep.history.values};
 }
 
 void AdrRelaxation::add_reactions(const Loading& loading, double s, History& history) {
@@ -58,15 +74,22 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     return load > 0.0 ? fnorm / load : fnorm;
   };
 
-  loading.impose(s, u.data());
-  std::fill(v.begin(), v.end(), 0.0);
   double r = 0.0, du = 1.0, c = 0.0;
-  try {
-    r = residual();
-  } catch (const DivergenceError&) {
-    throw DivergenceError("ADR: the internal force of the starting state is NaN or Inf", rep.iterations);
-  }
   bool first = true, converged = false;
+  if (resuming_) {
+    // v, f and f_old are the resumed state's, u is where it stopped: the next iteration is
+    // the one the interrupted solve would have made (its damping needs f_old).
+    resuming_ = false;
+    r = resume_r_, du = resume_du_, first = false;
+  } else {
+    loading.impose(s, u.data());
+    std::fill(v.begin(), v.end(), 0.0);
+    try {
+      r = residual();
+    } catch (const DivergenceError&) {
+      throw DivergenceError("ADR: the internal force of the starting state is NaN or Inf", rep.iterations);
+    }
+  }
   ThreadGovernor governor;
   while (rep.iterations < opt_.max_iterations) {
     governor.tick();
@@ -127,6 +150,7 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
       sample_.residual = r;
       progress_->update(sample_);
     }
+    if (checkpoints_.due(rep.iterations)) checkpoints_.call(state(u, r, du, rep));
   }
   rep.residual = r;
   rep.displacement_change = du;
@@ -134,14 +158,26 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
 }
 
 SolveReport solve_adr(Model& model, const Loading& loading, const AdrOptions& opt,
-                      std::vector<double>& u, Progress* progress, const Observer& observe) {
+                      std::vector<double>& u, Progress* progress, const Observer& observe,
+                      const Checkpoints<AdrState>& checkpoints, const AdrState* resume) {
   SolveReport rep;
   rep.history.columns = {"iteration", "load_factor", "residual", "displacement_change", "damping"};
   for (const auto& c : loading.reaction_columns(model.dofs_per_particle())) rep.history.columns.push_back(c);
   rep.history.reserve(opt.max_iterations / std::max<std::int64_t>(opt.history_every, 1) + 1);
   try {
     AdrRelaxation adr(model, opt, progress);
-    for (int step = 1; step <= opt.load_steps; ++step) {
+    adr.set_checkpoints(checkpoints);
+    int first_step = 1;
+    if (resume) {
+      if (resume->load_step < 1 || resume->load_step > opt.load_steps || resume->history.size() % rep.history.columns.size())
+        throw std::invalid_argument("solve_adr: the resumed state's load step or history does not fit the options");
+      adr.resume(*resume);
+      u = resume->u;
+      rep.iterations = resume->iterations;
+      rep.history.values.assign(resume->history.begin(), resume->history.end());
+      first_step = resume->load_step;
+    }
+    for (int step = first_step; step <= opt.load_steps; ++step) {
       adr.set_load_step(step, opt.load_steps);
       rep.converged = adr.balance(loading, static_cast<double>(step) / opt.load_steps, u, rep, observe);
       if (!rep.converged) break;

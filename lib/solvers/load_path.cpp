@@ -1,9 +1,11 @@
 #include "perinom/solvers/load_path.hpp"
 
 #include <optional>
+#include <stdexcept>
 
 #include "perinom/core/error.hpp"
 #include "perinom/core/timer.hpp"
+#include "load_path_state.hpp"
 
 namespace perinom {
 namespace {
@@ -43,7 +45,10 @@ bool parse_load_path_scheme(const std::string& type, LoadPathScheme& s) {
 SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& stages,
                             const LoadPathOptions& opt, std::vector<double>& u, Progress* progress,
                             const std::function<void(const LoadStepRecord&, const std::vector<double>&)>&
-                                after_step) {
+                                after_step,
+                            const Checkpoints<LoadPathState>& checkpoints, const LoadPathState* resume) {
+  if (opt.scheme == LoadPathScheme::newton && (checkpoints.every > 0 || resume))
+    throw std::invalid_argument("solve_load_path: the Newton scheme is not checkpointed (KINSOL's state is not kept)");
   SolveReport rep;
   rep.history.columns = {"stage", "step", "load_factor", "iterations", "rounds", "newly_flagged",
                          "yielding", "plastic", "residual", "seconds"};
@@ -65,6 +70,17 @@ SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& 
   if (opt.scheme != LoadPathScheme::newton) adr.emplace(model, balance_opt, progress);
   int total_steps = 0, done = 0;
   for (const auto& s : stages) total_steps += s.steps;
+  // Where to start: the first step of the first stage, or the step after the resumed one
+  // (the next stage's first when the resumed step ended its stage).
+  std::size_t first_stage = 0;
+  int first_step = 1;
+  bool continuing = false;  // the resumed stage has steps left
+  if (resume) {
+    done = detail::restore(model, stages, *resume, u, rep);
+    first_stage = std::size_t(resume->stage), first_step = resume->step + 1;
+    continuing = first_step <= stages[first_stage].steps;
+    if (!continuing) ++first_stage, first_step = 1;
+  }
 
   auto record = [&](LoadStepRecord& r, const std::vector<double>& xi0, double t0) {
     count_plastic(model, xi0, r);
@@ -88,9 +104,10 @@ SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& 
   };
 
   try {
-    for (std::size_t k = 0; k < stages.size(); ++k) {
+    for (std::size_t k = first_stage; k < stages.size(); ++k) {
       LoadStage& stage = stages[k];
-      stage.loading.begin_stage(k > 0 ? &stages[k - 1].loading : nullptr, u.data());
+      const bool resumed_stage = continuing && k == first_stage;
+      if (!resumed_stage) stage.loading.begin_stage(k > 0 ? &stages[k - 1].loading : nullptr, u.data());
       if (opt.scheme == LoadPathScheme::newton) {
         NewtonOptions nopt = opt.newton;
         nopt.load_steps = stage.steps;
@@ -120,8 +137,8 @@ SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& 
       // puts a strain jump under the loaded face, and with non-associated flow (d0 < 1) the
       // balance can then settle in a second, non-uniform equilibrium: the biaxial test did
       // (uniform to 1e-9 with the predictor, 9% lower plastic strain without it).
-      std::vector<double> u_prev = u;
-      for (int step = 1; step <= stage.steps; ++step) {
+      std::vector<double> u_prev = resumed_stage ? resume->u_prev : u;
+      for (int step = resumed_stage ? first_step : 1; step <= stage.steps; ++step) {
         const double t0 = wall_seconds();
         if (step > 1) {
           for (std::size_t k = 0; k < u.size(); ++k) {
@@ -167,6 +184,7 @@ SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& 
         rep.iterations += r.iterations;
         model.commit(u.data());
         record(r, xi0, t0);
+        if (checkpoints.due(done)) checkpoints.call(detail::state_after(model, stages, int(k), step, u, u_prev, rep));
       }
     }
     rep.converged = true;

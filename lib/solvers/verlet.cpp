@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "perinom/core/error.hpp"
 #include "perinom/core/thread_governor.hpp"
@@ -23,13 +24,14 @@ namespace {
 
 void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
                std::vector<double>& u, std::vector<double>& v, Progress* progress,
-               const Observer& observe, SolveReport& rep) {
+               const Observer& observe, const Checkpoints<VerletState>& checkpoints,
+               const VerletState* resume, SolveReport& rep) {
   const std::size_t n = model.dofs();
   u.resize(n, 0.0);
   v.resize(n, 0.0);
   if (progress) progress->phase("summing the stiffness rows for the stable time step");
   rep.stable_time_step = stable_time_step(model);
-  const double dt = opt.dt > 0.0 ? opt.dt : opt.safety * rep.stable_time_step;
+  const double dt = resume ? resume->dt : opt.dt > 0.0 ? opt.dt : opt.safety * rep.stable_time_step;
   auto inv_mass = model.lumped_mass();
   for (auto& m : inv_mass) m = 1.0 / m;
   const double* fext = loading.force.empty() ? nullptr : loading.force.data();
@@ -92,19 +94,32 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   };
   auto record = [&]() { rep.history.values.insert(rep.history.values.end(), row.begin(), row.end()); };
   double t = 0.0;
-  loading.impose(factor(t), u.data());
-  accelerate(0, t);
   // Galerkin supports whose targets move (a prescribed displacement): their multipliers.
   const bool moving_galerkin =
       loading.galerkin() && std::any_of(loading.value.begin(), loading.value.end(), [](double x) { return x != 0.0; });
   std::vector<double> lambda(moving_galerkin ? loading.fixed.size() : 0), lambda_old(lambda.size());
-  if (moving_galerkin) loading.multipliers(fint.data(), factor(t), lambda_old.data());
-  energies(0, t);
-  record();
+  std::int64_t first_step = 1;
+  if (resume) {
+    for (const auto* x : {&resume->u, &resume->v, &resume->a, &resume->fint})
+      if (x->size() != n) throw std::invalid_argument("solve_verlet: a resumed state vector does not have dofs() values");
+    if (resume->multipliers.size() != lambda.size() || resume->history.size() % rep.history.columns.size())
+      throw std::invalid_argument("solve_verlet: the resumed state's multipliers or history do not fit the loading");
+    u = resume->u, v = resume->v, a = resume->a, fint = resume->fint, lambda_old = resume->multipliers;
+    t = resume->time, work = resume->work, e0 = resume->e0, e_max = resume->e_max, w_max = resume->w_max;
+    rep.history.values.assign(resume->history.begin(), resume->history.end());
+    rep.iterations = resume->step, rep.end_time = t;
+    first_step = resume->step + 1;
+  } else {
+    loading.impose(factor(t), u.data());
+    accelerate(0, t);
+    if (moving_galerkin) loading.multipliers(fint.data(), factor(t), lambda_old.data());
+    energies(0, t);
+    record();
+  }
   ProgressSample sample;
   sample.limit = opt.steps;
   ThreadGovernor governor;
-  for (std::int64_t step = 1; step <= opt.steps; ++step) {
+  for (std::int64_t step = first_step; step <= opt.steps; ++step) {
     governor.tick();
     parallel_for(n, [&](std::size_t k) {
       v_old[k] = v[k];
@@ -156,6 +171,8 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
       sample.time = t;
       progress->update(sample);
     }
+    if (checkpoints.due(step))
+      checkpoints.call(VerletState{step, t, dt, work, e0, e_max, w_max, u, v, a, fint, lambda_old, rep.history.values});
   }
   rep.converged = true;
   if (progress) progress->finish();
@@ -165,10 +182,11 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
 
 SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptions& opt,
                          std::vector<double>& u, std::vector<double>& v, Progress* progress,
-                         const Observer& observe) {
+                         const Observer& observe, const Checkpoints<VerletState>& checkpoints,
+                         const VerletState* resume) {
   SolveReport rep;
   try {
-    integrate(model, loading, opt, u, v, progress, observe, rep);
+    integrate(model, loading, opt, u, v, progress, observe, checkpoints, resume, rep);
   } catch (const DivergenceError& e) {
     if (progress) progress->finish();
     rep.converged = false;

@@ -2,6 +2,7 @@
 /// @file Point clouds as VTK XML files: one .vtu per output step, a .pvd time series over them.
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace perinom::io {
@@ -49,11 +50,17 @@ class PvdSeries {
   /// Number of steps recorded so far.
   std::size_t size() const;
 
- private:
+  /// A recorded step: its time and its file name, relative to the directory.
   struct Step {
     double time;
     std::string file;
   };
+  const std::vector<Step>& steps() const { return steps_; }
+  /// Continues a series recorded earlier (a checkpoint's): `steps` become this series'
+  /// steps, and the next add() writes index steps.size(). No file is touched.
+  void resume(std::vector<Step> steps) { steps_ = std::move(steps); }
+
+ private:
   std::string directory_;
   std::string name_;
   std::vector<Step> steps_;

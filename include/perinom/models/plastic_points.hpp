@@ -72,6 +72,10 @@ class PlasticPoints {
   std::size_t flagged() const;
   /// Back to the virgin state: no stress, no plastic strain, no flag.
   void reset();
+  /// Takes committed states and flags saved from committed() and flags() (a checkpoint), the
+  /// trial states equal to them as after commit(). Throws std::invalid_argument for a size
+  /// other than size().
+  void restore(std::vector<Point> committed, std::vector<std::uint8_t> flags);
 
   const std::vector<Point>& committed() const { return committed_; }
   const std::vector<Point>& trial() const { return trial_; }

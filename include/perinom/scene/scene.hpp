@@ -107,10 +107,16 @@ struct OutputSpec {
                                ///< load path); 0: the final state only
   std::vector<std::int64_t> vtk_steps;  ///< load paths: snapshots after these load steps (counted over all stages)
   bool csv = false;  ///< each snapshot's point data also as CSV
+  /// A checkpoint (checkpoint.bin) every this many ADR iterations, Verlet steps or load
+  /// steps; 0: none. Newton solves are not checkpointed (refused).
+  std::int64_t checkpoint_every = 0;
 };
 
 struct Scene {
   std::string source;  ///< file name, for messages
+  /// The scene's YAML after the --set overrides, without its `output` section, as yaml-cpp
+  /// writes it: what a checkpoint must have been written for (scene_difference.hpp).
+  std::string canonical;
   std::string name;
   int dim = 2;
   BoxGeometry geometry;  ///< the box (and holes) of a lattice; dim and thickness for every body

@@ -35,6 +35,19 @@ struct SolveReport {
   History history;
 };
 
+/// What solve_adr carries from one iteration to the next, taken at the end of an iteration:
+/// with it the solve continues bit for bit (solve_adr's `resume`).
+struct AdrState {
+  int load_step = 1;                 ///< the load step being balanced (from 1)
+  std::int64_t iterations = 0;       ///< over all load steps
+  double residual = 0.0;             ///< the relative residual at u
+  double displacement_change = 0.0;  ///< of the last iteration
+  /// dofs() values each: the displacement (m), the velocity (m per fictitious step), the out-of-
+  /// balance force F = f_ext - f_int (N) at u and at the iterate before, the inverse fictitious mass.
+  std::vector<double> u, v, f, f_old, inv_lambda;
+  std::vector<double> history;       ///< the history rows so far (History::values)
+};
+
 /// ADR's state between load levels: the fictitious mass (from the model's exact stiffness
 /// row sums, computed once), the velocities and work vectors. solve_adr runs it over load
 /// steps; the load-path solvers (LBC) call balance() once per balance round.
@@ -49,15 +62,25 @@ class AdrRelaxation {
                const Observer& observe = {}, const std::function<void()>& after_iteration = {});
   /// The progress sample's load-step fields (for the bar).
   void set_load_step(int step, int steps) { sample_.load_step = step, sample_.load_steps = steps; }
+  /// Hands the state to `checkpoints` at the end of every iteration it is due (counted in
+  /// rep.iterations over all balances).
+  void set_checkpoints(const Checkpoints<AdrState>& checkpoints) { checkpoints_ = checkpoints; }
+  /// The next balance() continues the iterations of `state` (its u is balance's u, its load
+  /// factor balance's s) instead of starting from rest; rep's counters are the caller's to set.
+  void resume(const AdrState& state);
 
  private:
   /// Appends the supports' reactions at the last force evaluation to the history's last row.
   void add_reactions(const Loading& loading, double s, History& history);
+  AdrState state(const std::vector<double>& u, double r, double du, const SolveReport& rep) const;
   Model& model_;
   AdrOptions opt_;
   Progress* progress_;
   ProgressSample sample_;
   std::vector<double> inv_lambda_, v_, f_, f_old_, fint_, last_good_;
+  Checkpoints<AdrState> checkpoints_;
+  bool resuming_ = false;
+  double resume_r_ = 0.0, resume_du_ = 0.0;
 };
 
 /// Solves f_int(u) = s * f_ext with u = s * u_bar on the constrained dofs, for
@@ -68,8 +91,11 @@ class AdrRelaxation {
 /// history row ends with their reactions (Loading::reaction_columns, Loading::reactions).
 /// On NaN or Inf it stops with report.failure set and converged false, leaving in u the
 /// last state (checked every 100 iterations) whose force was finite.
+/// `checkpoints` receives the whole state when due; with `resume` (such a state) the solve
+/// continues from it, and ends with the u, report and history the uninterrupted solve would.
 SolveReport solve_adr(Model& model, const Loading& loading, const AdrOptions& options,
                       std::vector<double>& u, Progress* progress = nullptr,
-                      const Observer& observe = {});
+                      const Observer& observe = {}, const Checkpoints<AdrState>& checkpoints = {},
+                      const AdrState* resume = nullptr);
 
 }  // namespace perinom

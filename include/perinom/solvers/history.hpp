@@ -1,5 +1,6 @@
 #pragma once
-/// @file A solver's iteration history, and an observer of intermediate states.
+/// @file A solver's iteration history, and the observers of intermediate states: snapshots
+/// (Observer) and checkpoints (Checkpoints).
 #include <algorithm>
 #include <cstdint>
 #include <initializer_list>
@@ -36,6 +37,16 @@ struct Observer {
   void operator()(std::int64_t it, double t, const std::vector<double>& u) const {
     if (every > 0 && call && it % every == 0) call(it, t, u);
   }
+};
+
+/// Called with the solver's whole state (AdrState, VerletState, LoadPathState) every `every`
+/// iterations, steps or load steps (never when every = 0), for checkpoints the solver can
+/// resume from bit for bit. What is done with the state (a file) is the caller's business.
+template <class State>
+struct Checkpoints {
+  std::int64_t every = 0;
+  std::function<void(const State&)> call;
+  bool due(std::int64_t it) const { return every > 0 && call && it % every == 0; }
 };
 
 }  // namespace perinom

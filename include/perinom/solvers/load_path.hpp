@@ -45,14 +45,40 @@ struct LoadStepRecord {
   double seconds = 0.0;
 };
 
+/// Where a load path stands after a committed load step: with it the path continues bit
+/// for bit (solve_load_path's `resume`). The balance itself starts from rest in every step,
+/// so nothing of ADR is kept.
+struct LoadPathState {
+  int stage = 0;                ///< the stage of the last committed step (from 0)
+  int step = 0;                 ///< that step within the stage (from 1)
+  std::int64_t iterations = 0;  ///< ADR iterations over all steps
+  double residual = 0.0;        ///< the step's relative residual
+  /// dofs() values each: u now, and u at the step before (the predictor's base; u at the
+  /// stage's start after its first step).
+  std::vector<double> u, u_prev;
+  /// Loading::value0 of every stage begun, in order (where each one started).
+  std::vector<std::vector<double>> stage_value0;
+  std::vector<PlasticPoints::Point> plastic;  ///< committed states (empty for an elastic model)
+  std::vector<std::uint8_t> flags;            ///< LBC's flags (empty for an elastic model)
+  std::vector<double> history;                ///< the history rows so far (History::values)
+};
+
+/// The load steps a state has done, counted over all stages (as output.vtk_steps counts).
+int steps_done(const LoadPathState& state, const std::vector<LoadStage>& stages);
+
 /// Runs the stages in order, each from where the previous ended (Loading::begin_stage).
 /// after_step (if set) sees every committed step. report.history has one row per load step
 /// (the LoadStepRecord fields); report.iterations counts all ADR or Newton iterations.
 /// Stops at the first step that fails, with report.failure saying where.
+/// `checkpoints` receives the whole state after the load steps it is due (counted over all
+/// stages, after after_step); with `resume` (such a state) the path continues from it, and
+/// ends with the u, plastic states, report and history the uninterrupted one would. The
+/// Newton scheme takes neither (KINSOL's state is not kept): std::invalid_argument.
 SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& stages,
                             const LoadPathOptions& options, std::vector<double>& u,
                             Progress* progress = nullptr,
                             const std::function<void(const LoadStepRecord&, const std::vector<double>&)>&
-                                after_step = {});
+                                after_step = {},
+                            const Checkpoints<LoadPathState>& checkpoints = {}, const LoadPathState* resume = nullptr);
 
 }  // namespace perinom

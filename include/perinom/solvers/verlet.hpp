@@ -26,6 +26,22 @@ struct VerletOptions {
   double energy_floor = 1e-20;  ///< J: keeps an all-zero run from tripping on rounding
 };
 
+/// What solve_verlet carries from one step to the next, taken at the end of a step: with it
+/// the integration continues bit for bit (solve_verlet's `resume`).
+struct VerletState {
+  std::int64_t step = 0;  ///< steps done
+  double time = 0.0;      ///< t after them (s), summed step by step as the loop does
+  double dt = 0.0;        ///< the step it integrates with (s)
+  /// The energy balance: external work so far (J), the energy at step 0, the largest energy
+  /// and the largest |work| of the history rows so far.
+  double work = 0.0, e0 = 0.0, e_max = 0.0, w_max = 0.0;
+  /// dofs() values each: displacement (m), velocity (m/s), acceleration (m/s^2) and the
+  /// internal force (N) at u.
+  std::vector<double> u, v, a, fint;
+  std::vector<double> multipliers;  ///< Galerkin supports that move: their multipliers at u (N), else empty
+  std::vector<double> history;      ///< the history rows so far (History::values)
+};
+
 /// The stable step 2 / omega_max, with omega_max^2 bounded by max_i sum_j |K_ij| / m_i
 /// (Gershgorin on M^-1 K with the model's exact row sums).
 double stable_time_step(const Model& model);
@@ -38,8 +54,12 @@ double stable_time_step(const Model& model);
 /// On NaN or Inf, or when the energy balance fails (VerletOptions::energy_check), it stops
 /// with report.failure set and converged false, leaving in u the last state kept (every 100
 /// steps, after that step's energy check) whose force was finite.
+/// `checkpoints` receives the whole state when due; with `resume` (such a state) the
+/// integration continues from it, and ends with the u, v, report and history the
+/// uninterrupted one would.
 SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptions& options,
                          std::vector<double>& u, std::vector<double>& v,
-                         Progress* progress = nullptr, const Observer& observe = {});
+                         Progress* progress = nullptr, const Observer& observe = {},
+                         const Checkpoints<VerletState>& checkpoints = {}, const VerletState* resume = nullptr);
 
 }  // namespace perinom

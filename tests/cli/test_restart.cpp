@@ -1,0 +1,199 @@
+// `perinom run SCENE --restart DIR`: a run resumed from a checkpoint written part-way ends
+// with the files of the uninterrupted run, bit for bit (ADR, Verlet, a thin plate, an LBC
+// load path; resumed in a folder holding only the checkpoint, in place in a folder the run
+// went on writing, and into another folder), and a checkpoint that is not this scene's, or
+// not whole, is refused.
+#include <catch2/catch.hpp>
+
+#include <set>
+#include <string>
+
+#include "../support/cli.hpp"
+
+using namespace cli_test;
+
+namespace {
+
+const std::string biaxial = "'" PERINOM_SOURCE_DIR "/examples/biaxial_compression.yaml'";
+const std::string bar = "'" PERINOM_SOURCE_DIR "/examples/vibrating_bar.yaml'";
+
+/// The summary from "solver" to "wall_time": iterations, residual, reactions, plasticity and
+/// probes, every number in the shortest text that reads back bit for bit.
+std::string results_of(const std::string& summary) {
+  const auto from = summary.find("\"solver\""), to = summary.find("\"wall_time\"");
+  REQUIRE(from != std::string::npos);
+  REQUIRE(to != std::string::npos);
+  return summary.substr(from, to - from);
+}
+
+/// load_steps.csv without its wall-time column (seconds, the tenth).
+std::string without_seconds(const std::string& csv) {
+  std::string out, line;
+  std::istringstream in(csv);
+  while (std::getline(in, line)) {
+    std::size_t start = 0;
+    for (int k = 0; k < 9; ++k) start = line.find(',', start) + 1;
+    const std::size_t end = line.find(',', start);
+    out += line.substr(0, start) + (end == std::string::npos ? "" : line.substr(end + 1)) + "\n";
+  }
+  return out;
+}
+
+/// Every file of the uninterrupted run's folder is in `other` with the same bytes (the
+/// snapshots' .vtu and .csv, the .pvd, the histories, the probes' files), the summary's
+/// results and the step table's numbers but for their wall times.
+void require_same_results(const fs::path& reference, const fs::path& other) {
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(reference)) names.insert(e.path().filename().string());
+  CHECK(names.count("summary.json"));
+  for (const auto& name : names) {
+    INFO(other / name);
+    REQUIRE(fs::exists(other / name));
+    const std::string a = slurp(reference / name), b = slurp(other / name);
+    if (name == "summary.json") CHECK(results_of(a) == results_of(b));
+    else if (name == "load_steps.csv") CHECK(without_seconds(a) == without_seconds(b));
+    else CHECK(a == b);
+  }
+  for (const auto& e : fs::directory_iterator(other)) {
+    const std::string name = e.path().filename().string();
+    INFO(name);
+    CHECK((names.count(name) || name == "checkpoint.bin"));
+  }
+}
+
+/// A whole number after "key": in a summary.
+long number_after(const std::string& summary, const std::string& key) {
+  const auto at = summary.find("\"" + key + "\": ");
+  REQUIRE(at != std::string::npos);
+  return std::stol(summary.substr(at + key.size() + 4));
+}
+
+void require_ok(const Outcome& o) {
+  INFO(o.err);
+  REQUIRE(o.exit_code == 0);
+}
+
+}  // namespace
+
+TEST_CASE("ADR resumed from a checkpoint copied aside part-way ends bit for bit as the uninterrupted run", "[cli][checkpoint]") {
+  ScratchDir d;
+  std::ofstream(d.path / "scene.yaml") << tiny_scene;
+  const std::string sets = " --set output.csv=true --set solver.tolerance=1e-10 --set solver.displacement_tolerance=1e-10";
+  require_ok(perinom(d, "run scene.yaml --out reference" + sets));
+  const long n = number_after(slurp(d.path / "reference" / "summary.json"), "iterations");
+  const long k = n / 2 + 1;  // the only checkpoint: part-way
+  REQUIRE(n > 100);
+  require_ok(perinom(d, "run scene.yaml --out written --set output.checkpoint_every=" + std::to_string(k) + sets));
+  require_same_results(d.path / "reference", d.path / "written");  // writing checkpoints changes nothing
+  // The run interrupted after the checkpoint: a folder with only it, resumed in place.
+  fs::create_directories(d.path / "resumed");
+  fs::copy_file(d.path / "written" / "checkpoint.bin", d.path / "resumed" / "checkpoint.bin");
+  const Outcome o = perinom(d, "run scene.yaml --restart resumed" + sets);
+  require_ok(o);
+  const std::string from = "resumed/checkpoint.bin (iteration " + std::to_string(k) + ")";
+  CHECK(o.out.find("perinom: resuming from " + from) != std::string::npos);
+  CHECK(slurp(d.path / "resumed" / "summary.json").find("\"restarted_from\": \"" + from + "\"") != std::string::npos);
+  require_same_results(d.path / "reference", d.path / "resumed");
+}
+
+TEST_CASE("Verlet resumed in place, in a folder the killed run went on writing, ends bit for bit", "[cli][checkpoint]") {
+  ScratchDir d;
+  const std::string sets = " --set solver.steps=300 --set output.vtk_every=100 --set output.csv=true";
+  require_ok(perinom(d, "run " + bar + " --out reference --threads 2" + sets));
+  require_ok(perinom(d, "run " + bar + " --out killed --threads 2 --set output.checkpoint_every=160" + sets));
+  // The folder as a run killed after its last snapshot would leave it, the checkpoint of
+  // step 160 (listing the snapshot of step 100) in it: resuming removes what came later.
+  fs::remove(d.path / "killed" / "summary.json");
+  // On one thread where the others ran on two: the sums give the same bits for any count.
+  const Outcome o = perinom(d, "run " + bar + " --restart killed --threads 1" + sets);
+  require_ok(o);
+  CHECK(o.out.find("resuming from killed/checkpoint.bin (step 160, t = ") != std::string::npos);
+  CHECK(o.out.find("removed 6 files of an earlier run") != std::string::npos);  // 2 snapshots (.vtu, .csv), .pvd, histories
+  require_same_results(d.path / "reference", d.path / "killed");
+}
+
+TEST_CASE("a thin plate in Verlet resumed from a checkpoint ends bit for bit", "[cli][checkpoint]") {
+  ScratchDir d;
+  const std::string plate = "'" PERINOM_SOURCE_DIR "/examples/thin_plate_clamped.yaml'";
+  const std::string sets = " --set solver.type=verlet --set solver.steps=200 --set discretization.dx=0.05"
+                           " --set output.csv=true";
+  require_ok(perinom(d, "run " + plate + " --out reference" + sets));
+  require_ok(perinom(d, "run " + plate + " --out written --set output.checkpoint_every=120" + sets));
+  const Outcome o = perinom(d, "run " + plate + " --restart written --out resumed" + sets);
+  require_ok(o);
+  CHECK(o.out.find("resuming from written/checkpoint.bin (step 120, ") != std::string::npos);
+  require_same_results(d.path / "reference", d.path / "resumed");
+}
+
+TEST_CASE("an LBC load path resumed into another folder ends bit for bit, its earlier snapshots copied", "[cli][checkpoint][load_path]") {
+  ScratchDir d;
+  const std::string sets = " --set stages.0.steps=3 --set stages.1.steps=3 --set discretization.dx=0.005"
+                           " --set output.vtk_every=1 --set output.csv=true";
+  require_ok(perinom(d, "run " + biaxial + " --out reference" + sets));
+  require_ok(perinom(d, "run " + biaxial + " --out written --set output.checkpoint_every=4" + sets));
+  const Outcome o = perinom(d, "run " + biaxial + " --restart written --out resumed" + sets);
+  require_ok(o);
+  CHECK(o.out.find("resuming from written/checkpoint.bin (load step 1 of stage 2)") != std::string::npos);
+  CHECK(slurp(d.path / "resumed" / "summary.json").find("\"particles_yielded\": 100") != std::string::npos);
+  require_same_results(d.path / "reference", d.path / "resumed");
+}
+
+TEST_CASE("a checkpoint of another scene, a damaged one and a folder without one are refused", "[cli][checkpoint]") {
+  ScratchDir d;
+  std::ofstream(d.path / "scene.yaml") << tiny_scene;
+  require_ok(perinom(d, "run scene.yaml --out written --set output.checkpoint_every=50"));
+  const fs::path checkpoint = d.path / "written" / "checkpoint.bin";
+  const std::string bytes = slurp(checkpoint);
+  SECTION("another scene: the key that differs is named") {
+    require_one_clear_error(perinom(d, "run scene.yaml --restart written --set material.E=2.0e9"),
+                            {"--restart written:", "another scene", "material.E is 1.0e9 in the checkpoint and 2.0e9 in scene.yaml"});
+    CHECK(fs::exists(checkpoint));  // refused before the folder is touched
+    CHECK(fs::exists(d.path / "written" / "summary.json"));
+  }
+  SECTION("truncated") {
+    std::ofstream(checkpoint, std::ios::binary | std::ios::trunc) << bytes.substr(0, bytes.size() / 2);
+    require_one_clear_error(perinom(d, "run scene.yaml --restart written"), {"--restart written:", "damaged or truncated"});
+  }
+  SECTION("a byte changed") {
+    std::string bad = bytes;
+    bad[bad.size() / 3] = static_cast<char>(bad[bad.size() / 3] ^ 0x40);
+    std::ofstream(checkpoint, std::ios::binary | std::ios::trunc) << bad;
+    require_one_clear_error(perinom(d, "run scene.yaml --restart written"), {"checksum does not match"});
+  }
+  SECTION("no checkpoint") {
+    fs::create_directories(d.path / "empty");
+    require_one_clear_error(perinom(d, "run scene.yaml --restart empty"), {"--restart empty:", "holds no checkpoint"});
+  }
+}
+
+TEST_CASE("a checkpoint is refused when the point file under the same scene text has moved a particle", "[cli][checkpoint]") {
+  ScratchDir d;
+  const auto write_cloud = [&](double shift) {
+    std::ofstream csv(d.path / "cloud.csv");
+    csv << "x,y,volume\n";
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) csv << 0.0005 + 0.001 * i + (i + j == 6 ? shift : 0.0) << "," << 0.0005 + 0.001 * j << ",1e-6\n";
+  };
+  write_cloud(0.0);
+  std::ofstream(d.path / "scene.yaml") << R"(name: points
+dimension: 2
+geometry: {points: cloud.csv}
+discretization: {dx: 0.001, horizon: {ratio: 2.015}}
+material: {type: linear_elastic, E: 1.0e9, nu: 0.25, density: 1000.0}
+model: {formulation: classical, operator_order: 1}
+boundary:
+  - {region: {box: {min: [0.0, 0.0], max: [0.004, 0.001]}}, fix: [x, y]}
+  - {region: {box: {min: [0.0, 0.003], max: [0.004, 0.004]}}, displacement: {y: 1.0e-6}}
+output: {checkpoint_every: 5}
+)";
+  require_ok(perinom(d, "run scene.yaml --out written"));
+  require_ok(perinom(d, "run scene.yaml --restart written --out again"));  // the same cloud resumes
+  write_cloud(1e-5);
+  require_one_clear_error(perinom(d, "run scene.yaml --restart written --out moved"),
+                          {"--restart written:", "particles are not where the scene places them"});
+}
+
+TEST_CASE("Newton solves are not checkpointed, and say so", "[cli][checkpoint]") {
+  require_rejected(with(tiny_scene, "type: adr", "type: newton") + "output: {checkpoint_every: 10}\n",
+                   {"output.checkpoint_every", "Newton solves are not checkpointed"});
+}
