@@ -2,7 +2,7 @@
 
 #include <omp.h>
 
-#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
@@ -14,25 +14,19 @@ namespace {
 /// Governors alive on this thread: only the outermost one acts.
 thread_local int depth = 0;
 
-double median(double* t, int n) {
-  std::nth_element(t, t + n / 2, t + n);
-  return t[n / 2];
-}
-
-bool disabled_by_environment() {
+bool environment_says(const char* value) {
   const char* v = std::getenv("PERINOM_THREAD_GOVERNOR");
-  return v && std::strcmp(v, "off") == 0;
+  return v && std::strcmp(v, value) == 0;
 }
 
 }  // namespace
 
 ThreadGovernor::ThreadGovernor() {
   caller_ = full_ = current_ = omp_get_max_threads();
-  active_ = depth == 0 && full_ > 1 && !omp_in_parallel() && !disabled_by_environment();
+  active_ = depth == 0 && full_ > 1 && !omp_in_parallel() && !environment_says("off");
+  verbose_ = environment_says("verbose");
   ++depth;
-  if (!active_) return;
-  use(1);
-  last_ = wall_seconds();
+  if (active_) begin(Phase::one, 1, wall_seconds());
 }
 
 ThreadGovernor::~ThreadGovernor() {
@@ -40,28 +34,48 @@ ThreadGovernor::~ThreadGovernor() {
   if (active_) omp_set_num_threads(caller_);
 }
 
-void ThreadGovernor::use(int threads) {
+void ThreadGovernor::begin(Phase phase, int threads, double now) {
+  phase_ = phase;
+  warm_ = false;
+  start_ = now;
+  iterations_ = 0;
+  if (threads == current_) return;
   current_ = threads;
   omp_set_num_threads(threads);
+  // Idle pool threads spin before they sleep (libgomp: for milliseconds), on the free core,
+  // while the one thread left may share the busy one: release them, so that one thread is
+  // one thread (the team is created again at the next switch, once per trial).
+  if (threads == 1) omp_pause_resource_all(omp_pause_soft);
 }
 
 void ThreadGovernor::tick() {
   if (!active_) return;
-  const double now = wall_seconds(), dt = now - last_;
-  last_ = now;
-  ++k_;
-  // Iterations 1..window+1 run on one thread, window+2..2 window+2 on the team; the first of
-  // each trial is not timed (it pays for the switch).
-  if (k_ <= window + 1) {
-    if (k_ >= 2) one_[k_ - 2] = dt;
-    if (k_ == window + 1) use(full_);
-  } else if (k_ <= 2 * window + 2) {
-    if (k_ >= window + 3) team_[k_ - window - 3] = dt;
-    if (k_ == 2 * window + 2) use(median(team_, window) < median(one_, window) ? full_ : 1);
-  } else if (k_ >= period) {
-    k_ = 0;
-    use(1);
+  const double now = wall_seconds();
+  if (!warm_) {  // the iteration that paid for the switch ends here
+    warm_ = true;
+    start_ = now;
+    return;
   }
+  ++iterations_;
+  const double elapsed = now - start_;
+  if (phase_ == Phase::exploit) {
+    if (elapsed >= exploit_factor * trial_length_) begin(Phase::one, 1, now);
+    return;
+  }
+  if (iterations_ < trial_iterations || elapsed < trial_seconds) return;
+  if (phase_ == Phase::one) {
+    one_ = elapsed / iterations_;
+    trial_length_ = elapsed;
+    begin(Phase::team, full_, now);
+    return;
+  }
+  team_ = elapsed / iterations_;
+  trial_length_ += elapsed;
+  ++trials_;
+  begin(Phase::exploit, team_ < one_ ? full_ : 1, now);
+  if (verbose_)
+    std::fprintf(stderr, "thread governor: %.3g ms per iteration on 1 thread, %.3g ms on %d: %d\n", one_ * 1e3,
+                 team_ * 1e3, full_, current_);
 }
 
 }  // namespace perinom

@@ -4,23 +4,28 @@
 namespace perinom {
 
 /// Chooses, for the iterations of one loop, between the full OpenMP team and a single thread,
-/// whichever runs an iteration faster now. On a machine where another process holds a core,
-/// a team whose threads meet at barriers several times per iteration waits for the thread that
+/// whichever runs the loop faster now. On a machine where another process holds a core, a
+/// team whose threads meet at barriers several times per iteration waits for the thread that
 /// shares its core with that process, and runs slower than one thread alone (the demo at
-/// dx = 0.5 mm with one of two cores busy: 1.5 times slower; see docs/performance.md).
+/// dx = 0.5 mm with one of two cores busy: 1.5 to 1.8 times slower; docs/performance.md).
 ///
-/// Every `period` iterations the governor times `window` iterations on one thread and
-/// `window` on the full team (the first iteration after each switch is not timed), compares
-/// the medians and keeps the faster count until the next trial. Results do not depend on the
-/// choice: the library's sums are independent of the thread count (core/parallel.hpp).
+/// The loop alternates a trial and a stretch of exploitation: the trial times the loop on one
+/// thread, then on the team, each for at least `trial_iterations` iterations and
+/// `trial_seconds` (the first iteration after a switch is not timed: it pays for the switch);
+/// the faster count then runs for `exploit_factor` times the trial's length, and the next
+/// trial begins. Short trials mislead: the scheduler favours a thread that has just woken, so a
+/// team looks fast under load for a few milliseconds. Results do not depend on the choice: the
+/// library's sums are independent of the thread count (core/parallel.hpp).
 ///
 /// Inert when the team has one thread, inside another governor's loop (the outer loop
 /// governs), or when the environment variable PERINOM_THREAD_GOVERNOR is "off" (benchmarks
-/// that measure a fixed team). The destructor restores the caller's thread count.
+/// that measure a fixed team); "verbose" prints each trial's figures and choice to stderr.
+/// The destructor restores the caller's thread count.
 class ThreadGovernor {
  public:
-  static constexpr int window = 8;
-  static constexpr int period = 400;
+  static constexpr int trial_iterations = 8;
+  static constexpr double trial_seconds = 0.05;
+  static constexpr double exploit_factor = 10.0;
 
   ThreadGovernor();
   ~ThreadGovernor();
@@ -31,15 +36,20 @@ class ThreadGovernor {
   void tick();
   /// The thread count of the iterations since the last tick.
   int threads() const { return current_; }
+  /// How many trials have ended (with a choice).
+  int trials() const { return trials_; }
 
  private:
-  void use(int threads);
+  enum class Phase { one, team, exploit };
+  void begin(Phase phase, int threads, double now);
 
-  bool active_ = false;
-  int caller_ = 1, full_ = 1, current_ = 1;
-  int k_ = 0;
-  double last_ = 0.0;
-  double one_[window] = {}, team_[window] = {};
+  bool active_ = false, verbose_ = false;
+  int caller_ = 1, full_ = 1, current_ = 1, trials_ = 0;
+  Phase phase_ = Phase::one;
+  bool warm_ = false;       ///< the phase's untimed first iteration is over
+  double start_ = 0.0;      ///< when the phase's timed iterations began (s)
+  long iterations_ = 0;     ///< timed iterations of the phase
+  double one_ = 0.0, team_ = 0.0, trial_length_ = 0.0;  ///< s per iteration; s
 };
 
 }  // namespace perinom
