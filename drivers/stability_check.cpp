@@ -7,12 +7,16 @@ namespace perinom::cli {
 const Loading& checked_loading(const Problem& p) { return p.stages.empty() ? p.loading : p.stages.front().loading; }
 
 void print_spectrum(const SpectrumReport& r) {
-  std::printf("  stability check  eigenvalues of M^-1 K on %zu free dofs (Galerkin reduction, dense, %.2f s):\n",
-              r.dofs, r.seconds);
-  std::printf("    smallest real part          %.6e 1/s^2 (largest |lambda| %.6e)\n", r.min_real, r.max_abs);
-  std::printf("    largest |Im| / max |lambda| %.3e\n", r.max_imag_relative);
-  std::printf("    negative real part          %zu (below -1e-9 max |lambda|)\n", r.negative);
-  std::printf("    complex                     %zu (|Im| above 1e-8 max |lambda|)\n", r.complex);
+  const bool dense = r.method == "dense";
+  std::printf("  stability check  eigenvalues of M^-1 K on %zu free dofs (Galerkin reduction, %s, %.2f s):\n", r.dofs,
+              r.method.c_str(), r.seconds);
+  std::printf("    smallest real part          %.6e 1/s^2 (largest |lambda| %.6e%s)\n", r.min_real, r.max_abs,
+              dense ? "" : "; both by iteration");
+  if (dense) std::printf("    largest |Im| / max |lambda| %.3e\n", r.max_imag_relative);
+  if (dense) std::printf("    negative real part          %zu (below -1e-9 max |lambda|)\n", r.negative);
+  else std::printf("    negative                    %zu (negative pivots of K; %zu zero)\n", r.negative, r.singular);
+  if (dense) std::printf("    complex                     %zu (|Im| above 1e-8 max |lambda|)\n", r.complex);
+  else std::printf("    complex                     0 (K is symmetric: every eigenvalue is real)\n");
   std::printf("    symmetry defect             %.3e (||K - K^T|| / ||K||, Frobenius)\n", r.symmetry_defect);
   std::printf("    growth rate                 %.6e 1/s (max Im sqrt(lambda))\n", r.growth_rate);
   std::printf("  %s\n", r.verdict().c_str());

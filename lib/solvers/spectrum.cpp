@@ -11,6 +11,7 @@
 #include <cstdio>
 
 #include "perinom/core/error.hpp"
+#include "perinom/solvers/inertia.hpp"
 
 namespace perinom {
 namespace {
@@ -106,13 +107,10 @@ SpectrumReport stiffness_spectrum(TangentModel& model, const Loading& loading, c
   SpectrumReport rep;
   const std::size_t n_all = model.dofs();
   rep.dofs = free_dofs(model, loading);
-  if (rep.dofs > options.max_dofs)
-    throw InputError("stability check: " + std::to_string(rep.dofs) + " free degrees of freedom, above the dense "
-                     "limit of " + std::to_string(options.max_dofs) + " (coarsen discretization.dx to check the formulation)");
   const int n = static_cast<int>(rep.dofs);
   if (n == 0) return rep;
 
-  // 1. The Galerkin reduction K_T = T^T K T, M_T = T^T M T.
+  // 1. The Galerkin reduction K_T = T^T K T, M_T = T^T M T, and K_T's symmetry defect.
   const std::vector<double> zero(n_all, 0.0);
   model.prepare_tangent(zero.data());
   const Sparse K = assemble_stiffness(model);
@@ -120,12 +118,31 @@ SpectrumReport stiffness_spectrum(TangentModel& model, const Loading& loading, c
   const Sparse T = reduction(n_all, loading, index, n);
   const auto mass = model.lumped_mass();
   const Eigen::Map<const Eigen::VectorXd> m(mass.data(), static_cast<Eigen::Index>(n_all));
-  Eigen::MatrixXd KT = Eigen::MatrixXd(Sparse(T.transpose() * K * T));
-  const Eigen::MatrixXd MT = Eigen::MatrixXd(Sparse(T.transpose() * m.asDiagonal() * T));
+  const Sparse KT_sparse = Sparse(T.transpose() * K * T), MT_sparse = Sparse(T.transpose() * m.asDiagonal() * T);
+  const double k_norm = KT_sparse.norm();
+  rep.symmetry_defect = k_norm > 0.0 ? Sparse(KT_sparse - Sparse(KT_sparse.transpose())).norm() / k_norm : 0.0;
+  const auto finish = [&] {
+    rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return rep;
+  };
 
-  // 2. The symmetry defect of the reduced stiffness.
-  const double k_norm = KT.norm();
-  rep.symmetry_defect = k_norm > 0.0 ? (KT - KT.transpose()).norm() / k_norm : 0.0;
+  // 2. Symmetric: the inertia of K_T (sparse LDL^T), no dense solve and no size limit.
+  if (options.sparse_when_symmetric && rep.symmetry_defect <= options.symmetric_tolerance) {
+    const PencilInertia in = pencil_inertia(KT_sparse, MT_sparse);
+    rep.method = "sparse LDL^T inertia";
+    rep.negative = static_cast<std::size_t>(in.negative);
+    rep.singular = static_cast<std::size_t>(in.zero);
+    rep.max_abs = in.max_lambda;
+    rep.min_real = in.min_lambda;
+    rep.growth_rate = in.negative > 0 ? std::sqrt(std::max(-in.min_lambda, 0.0)) : 0.0;
+    return finish();
+  }
+  if (rep.dofs > options.max_dofs)
+    throw InputError("stability check: " + std::to_string(rep.dofs) + " free degrees of freedom of a non-symmetric "
+                     "stiffness (defect " + std::to_string(rep.symmetry_defect) + "), above the dense limit of " +
+                     std::to_string(options.max_dofs) + " (coarsen discretization.dx to check the formulation)");
+  Eigen::MatrixXd KT = Eigen::MatrixXd(KT_sparse);
+  const Eigen::MatrixXd MT = Eigen::MatrixXd(MT_sparse);
 
   // 3. A = L^-1 K_T L^-T with M_T = L L^T (M_T is diagonal unless constraints are coupled).
   if (!loading.coupled_constraints()) {
@@ -144,6 +161,7 @@ SpectrumReport stiffness_spectrum(TangentModel& model, const Loading& loading, c
   const Eigen::EigenSolver<Eigen::MatrixXd> es(KT, false);
   if (es.info() != Eigen::Success) throw SolveError("stability check: the dense eigenvalue solve did not converge");
   const Eigen::VectorXcd lambda = es.eigenvalues();
+  rep.method = "dense";
   rep.max_abs = lambda.cwiseAbs().maxCoeff();
   rep.min_real = lambda.real().minCoeff();
   double max_imag = 0.0;
@@ -155,8 +173,7 @@ SpectrumReport stiffness_spectrum(TangentModel& model, const Loading& loading, c
     rep.growth_rate = std::max(rep.growth_rate, std::abs(std::sqrt(l).imag()));
   }
   rep.max_imag_relative = rep.max_abs > 0.0 ? max_imag / rep.max_abs : 0.0;
-  rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return rep;
+  return finish();
 }
 
 }  // namespace perinom

@@ -38,12 +38,21 @@ TEST_CASE("perinom check --spectrum finds the improved formulation unstable and 
   CHECK(consistent.out.find("UNSTABLE") == std::string::npos);
 }
 
-TEST_CASE("perinom check --spectrum refuses a scene above its size limit, naming the limit", "[cli][spectrum]") {
-  // dx 0.5 mm: 200 x 20 particles, 7,960 free dofs.
-  const Outcome o = bar("check_large", "check --spectrum", "--set discretization.dx=0.0005");
-  INFO(o.out << o.err);
-  CHECK(o.exit_code == 2);
-  CHECK(o.err.find("7960 free degrees of freedom, above the dense limit of 2000") != std::string::npos);
+TEST_CASE("perinom check --spectrum checks a large symmetric scene sparsely and refuses a large non-symmetric one",
+          "[cli][spectrum]") {
+  // dx 0.5 mm: 200 x 20 particles, 7,960 free dofs: the consistent formulation's K is
+  // symmetric (its inertia decides), the improved one's is not (the dense solve, limited).
+  const Outcome consistent = bar("check_large", "check --spectrum", "--set discretization.dx=0.0005");
+  INFO(consistent.out << consistent.err);
+  CHECK(consistent.exit_code == 0);
+  CHECK(consistent.out.find("on 7960 free dofs (Galerkin reduction, sparse LDL^T inertia") != std::string::npos);
+  CHECK(consistent.out.find("\n  stable\n") != std::string::npos);
+  const Outcome improved = bar("check_large_improved", "check --spectrum",
+                               "--set discretization.dx=0.0005 --set model.formulation=improved --set solver.type=adr");
+  INFO(improved.out << improved.err);
+  CHECK(improved.exit_code == 2);
+  CHECK(improved.err.find("7960 free degrees of freedom of a non-symmetric stiffness") != std::string::npos);
+  CHECK(improved.err.find("above the dense limit of 2000") != std::string::npos);
 }
 
 TEST_CASE("a static run with the improved formulation warns when the check finds it unstable", "[cli][spectrum]") {

@@ -1,5 +1,6 @@
-// The stability check (solvers/spectrum.hpp): known spectra of small spring chains, then the
-// formulations on the vibrating bar of the examples at a coarse spacing.
+// The stability check (solvers/spectrum.hpp): known spectra of small spring chains (dense, and
+// the sparse inertia route for symmetric stiffnesses against them), then the formulations on
+// the vibrating bar of the examples at a coarse spacing.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -63,6 +64,12 @@ Problem bar(const std::string& formulation, std::vector<std::string> more = {}) 
   return build_problem(read_scene(PERINOM_SOURCE_DIR "/examples/vibrating_bar.yaml", more));
 }
 
+SpectrumOptions dense() {
+  SpectrumOptions o;
+  o.sparse_when_symmetric = false;
+  return o;
+}
+
 }  // namespace
 
 TEST_CASE("the stability check reproduces the spectrum of a fixed-free spring chain", "[solvers][spectrum]") {
@@ -71,7 +78,8 @@ TEST_CASE("the stability check reproduces the spectrum of a fixed-free spring ch
   DenseModel model(chain(n + 1, true, false), std::vector<double>(n + 1, 2.0));
   Loading fixed;
   fixed.fix(0, 0.0);
-  const SpectrumReport r = stiffness_spectrum(model, fixed);
+  const SpectrumReport r = stiffness_spectrum(model, fixed, dense());
+  CHECK(r.method == "dense");
   CHECK(r.dofs == n);
   CHECK(r.stable());
   CHECK(r.symmetry_defect == 0.0);
@@ -93,12 +101,43 @@ TEST_CASE("the stability check reduces face-located constraints in Galerkin form
   face.coupled = {1, 2};
   face.coef = {-1.0, -1.0};
   face.scale = {1.0, 1.0};
-  const SpectrumReport r = stiffness_spectrum(model, face);
-  CHECK(r.dofs == 2);
-  CHECK(r.stable());
-  CHECK(r.symmetry_defect < 1e-15);
-  CHECK(r.min_real == Approx((8.0 - std::sqrt(28.0)) / 6.0).epsilon(1e-12));
-  CHECK(r.max_abs == Approx((8.0 + std::sqrt(28.0)) / 6.0).epsilon(1e-12));
+  for (const bool sparse : {false, true}) {
+    SpectrumOptions o;
+    o.sparse_when_symmetric = sparse;
+    const SpectrumReport r = stiffness_spectrum(model, face, o);
+    INFO(r.method);
+    CHECK(r.method == (sparse ? "sparse LDL^T inertia" : "dense"));
+    CHECK(r.dofs == 2);
+    CHECK(r.stable());
+    CHECK(r.symmetry_defect < 1e-15);
+    CHECK(r.min_real == Approx((8.0 - std::sqrt(28.0)) / 6.0).epsilon(1e-10));
+    CHECK(r.max_abs == Approx((8.0 + std::sqrt(28.0)) / 6.0).epsilon(1e-6));
+  }
+}
+
+TEST_CASE("the sparse inertia route counts negative eigenvalues and finds the extreme ones as the dense solve does",
+          "[solvers][spectrum]") {
+  // A fixed-free chain of 40 masses; then the same with springs of stiffness -0.3 to the
+  // ground at three masses (symmetric and indefinite).
+  const std::size_t n = 40;
+  auto K = chain(n + 1, true, false);
+  std::vector<double> m(n + 1);
+  for (std::size_t i = 0; i <= n; ++i) m[i] = 1.0 + 0.5 * std::sin(double(i));  // not uniform
+  Loading fixed;
+  fixed.fix(0, 0.0);
+  for (const bool indefinite : {false, true}) {
+    if (indefinite)
+      for (const std::size_t i : {5, 20, 39}) K[i][i] -= 0.3;
+    DenseModel model(K, m);
+    const SpectrumReport d = stiffness_spectrum(model, fixed, dense()), s = stiffness_spectrum(model, fixed);
+    INFO((indefinite ? "indefinite: " : "positive definite: ") << d.verdict() << "; sparse: " << s.verdict());
+    CHECK(s.method == "sparse LDL^T inertia");
+    CHECK(s.negative == d.negative);
+    CHECK(s.stable() == !indefinite);
+    CHECK(s.min_real == Approx(d.min_real).epsilon(indefinite ? 1e-4 : 1e-10));
+    CHECK(s.max_abs == Approx(d.max_abs).epsilon(1e-3));
+    CHECK(s.growth_rate == Approx(d.growth_rate).epsilon(1e-4));
+  }
 }
 
 TEST_CASE("the stability check finds the growth rate of a non-symmetric stiffness", "[solvers][spectrum]") {
@@ -114,16 +153,21 @@ TEST_CASE("the stability check finds the growth rate of a non-symmetric stiffnes
   CHECK(r.verdict().rfind("UNSTABLE: 0 eigenvalues with negative real part and 2 complex", 0) == 0);
 }
 
-TEST_CASE("the stability check refuses a problem above its size limit and names the limit", "[solvers][spectrum]") {
-  DenseModel model(chain(5, true, false), std::vector<double>(5, 1.0));
+TEST_CASE("the stability check refuses a non-symmetric problem above its dense size limit and names the limit",
+          "[solvers][spectrum]") {
+  DenseModel model({{1.0, 2.0}, {-2.0, 1.0}}, {1.0, 1.0});
   SpectrumOptions small;
-  small.max_dofs = 4;
+  small.max_dofs = 1;
   try {
     stiffness_spectrum(model, Loading{}, small);
     FAIL("no InputError");
   } catch (const InputError& e) {
-    CHECK(std::string(e.what()).find("5 free degrees of freedom, above the dense limit of 4") != std::string::npos);
+    CHECK(std::string(e.what()).find("2 free degrees of freedom of a non-symmetric stiffness") != std::string::npos);
+    CHECK(std::string(e.what()).find("above the dense limit of 1") != std::string::npos);
   }
+  // A symmetric one of any size takes the sparse route.
+  DenseModel chain5(chain(5, true, false), std::vector<double>(5, 1.0));
+  CHECK(stiffness_spectrum(chain5, Loading{}, small).stable());
 }
 
 // The test the issue asked for: it fails against the seed's default (improved), whose strong
@@ -144,14 +188,19 @@ TEST_CASE("the consistent and classical formulations are stable and symmetric on
   for (const char* f : {"consistent", "classical"}) {
     for (const char* at : {"layer", "face"}) {
       Problem p = bar(f, {std::string("boundary.0.at=") + at});
-      const SpectrumReport r = stiffness_spectrum(p.physics(), p.loading);
+      const SpectrumReport r = stiffness_spectrum(p.physics(), p.loading, dense()),
+                           s = stiffness_spectrum(p.physics(), p.loading);
       INFO(f << ", support at the " << at << ": " << r.verdict() << ", symmetry defect " << r.symmetry_defect
-             << ", min Re " << r.min_real << ", max Im " << r.max_imag_relative);
+             << ", min Re " << r.min_real << " (sparse " << s.min_real << "), max Im " << r.max_imag_relative);
       CHECK(p.loading.coupled_constraints() == (std::string(at) == "face"));
       CHECK(r.stable());
       CHECK(r.symmetry_defect < 1e-12);
       CHECK(r.min_real > 0.0);
       CHECK(r.max_imag_relative < 1e-12);
+      CHECK(s.method == "sparse LDL^T inertia");
+      CHECK(s.stable());
+      CHECK(s.min_real == Approx(r.min_real).epsilon(1e-8));
+      CHECK(s.max_abs == Approx(r.max_abs).epsilon(1e-2));
     }
   }
 }

@@ -1,6 +1,6 @@
 #pragma once
-/// @file The stability check: every eigenvalue of M^-1 K on the free degrees of freedom,
-/// computed densely, and whether the discrete problem is stable.
+/// @file The stability check: the eigenvalues of M^-1 K on the free degrees of freedom (all of
+/// them densely, or the inertia of a symmetric K sparsely), and whether the problem is stable.
 ///
 /// K is the model's stiffness dF/du at the reference state (visit_tangent_rows), reduced to
 /// the free dofs in Galerkin form: u = T u_R, K_T = T^T K T, M_T = T^T M T with M the lumped
@@ -23,7 +23,11 @@
 namespace perinom {
 
 struct SpectrumOptions {
-  /// The largest number of free dofs the dense solve accepts: memory 8 n^2 bytes per dense
+  /// A reduced stiffness symmetric to symmetric_tolerance (relative, Frobenius) is checked by
+  /// its inertia (solvers/inertia.hpp: sparse, any size) instead of the dense solve.
+  bool sparse_when_symmetric = true;
+  double symmetric_tolerance = 1e-12;
+  /// The largest number of free dofs the dense solve (non-symmetric stiffness) accepts: memory 8 n^2 bytes per dense
   /// copy, time O(n^3) on one core (Eigen's EigenSolver): measured 0.5 s at 490 free dofs and
   /// 140 s at 1,980 (the vibrating bar at dx 1 mm) on a shared 2-core machine, so minutes at
   /// this limit (docs/scene-format.md).
@@ -45,6 +49,8 @@ struct SpectrumReport {
   double symmetry_defect = 0.0;    ///< ||K_T - K_T^T||_F / ||K_T||_F
   double growth_rate = 0.0;        ///< max Im sqrt(lambda) (1/s), principal root
   double seconds = 0.0;            ///< wall time of the check
+  std::string method;              ///< "dense" (all eigenvalues) or "sparse LDL^T inertia"
+  std::size_t singular = 0;        ///< sparse: zero pivots (an unconstrained rigid mode)
 
   /// No negative and no complex eigenvalue beyond the tolerances.
   bool stable() const { return negative == 0 && complex == 0; }
@@ -55,9 +61,11 @@ struct SpectrumReport {
 /// The number of free dofs of a loading on a model (the size the check would solve).
 std::size_t free_dofs(const TangentModel& model, const Loading& loading);
 
-/// Assembles K_T and M_T densely and computes all eigenvalues of M_T^-1 K_T (Eigen's
+/// Assembles K_T and M_T. A symmetric K_T (consistent, classical): the count of negative
+/// eigenvalues from the inertia of K_T, the extreme ones by iteration; a symmetric matrix has
+/// no complex eigenvalue. Otherwise all eigenvalues of M_T^-1 K_T densely (Eigen's
 /// EigenSolver, no eigenvectors). The tangent is evaluated at u = 0 (prepare_tangent).
-/// Throws InputError when the free dofs exceed options.max_dofs (naming the limit).
+/// Throws InputError when a non-symmetric K_T's free dofs exceed options.max_dofs.
 SpectrumReport stiffness_spectrum(TangentModel& model, const Loading& loading,
                                   const SpectrumOptions& options = {});
 
