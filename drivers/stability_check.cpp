@@ -14,7 +14,9 @@ void print_spectrum(const SpectrumReport& r) {
               dense ? "" : "; both by iteration");
   if (dense) std::printf("    largest |Im| / max |lambda| %.3e\n", r.max_imag_relative);
   if (dense) std::printf("    negative real part          %zu (below -1e-9 max |lambda|)\n", r.negative);
-  else std::printf("    negative                    %zu (negative pivots of K; %zu zero)\n", r.negative, r.singular);
+  else if (r.method == "sparse LDL^T inertia")
+    std::printf("    negative                    %zu (negative pivots of K; %zu zero)\n", r.negative, r.singular);
+  else std::printf("    negative                    0 (K has a Cholesky factor)\n");
   if (dense) std::printf("    complex                     %zu (|Im| above 1e-8 max |lambda|)\n", r.complex);
   else std::printf("    complex                     0 (K is symmetric: every eigenvalue is real)\n");
   std::printf("    symmetry defect             %.3e (||K - K^T|| / ||K||, Frobenius)\n", r.symmetry_defect);

@@ -1,10 +1,12 @@
 #include "perinom/solvers/inertia.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <utility>
 
 #include "perinom/core/error.hpp"
@@ -62,19 +64,32 @@ std::pair<double, double> lanczos_extremes(const Sparse& B, Apply&& apply, int s
 PencilInertia pencil_inertia(const Sparse& K, const Sparse& M, int steps) {
   PencilInertia out;
   if (K.rows() == 0) return out;
-  Eigen::SimplicialLDLT<Sparse, Eigen::Lower> ldlt(K);  // AMD ordering
-  if (ldlt.info() != Eigen::Success) throw SolveError("stability check: the sparse LDL^T of the stiffness failed");
-  const Vector D = ldlt.vectorD();
-  for (Eigen::Index k = 0; k < D.size(); ++k) out.negative += D[k] < 0.0, out.zero += D[k] == 0.0;
   Eigen::SimplicialLLT<Sparse, Eigen::Lower> mass(M);
   if (mass.info() != Eigen::Success) throw SolveError("stability check: the reduced mass is not positive definite");
+  // A supernodal Cholesky succeeds exactly when K is positive definite: no negative and no
+  // zero eigenvalue. Otherwise the simplicial LDL^T (slower: no supernodes) counts them.
+  Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> llt;
+  llt.cholmod().print = 0;  // "not positive definite" is an answer here, not a warning
+  llt.compute(K);
+  std::function<Vector(const Vector&)> solve_K;
+  Eigen::SimplicialLDLT<Sparse, Eigen::Lower> ldlt;
+  if (llt.info() == Eigen::Success) {
+    out.cholesky = true;
+    solve_K = [&](const Vector& b) { return Vector(llt.solve(b)); };
+  } else {
+    ldlt.compute(K);  // AMD ordering
+    if (ldlt.info() != Eigen::Success) throw SolveError("stability check: the sparse LDL^T of the stiffness failed");
+    const Vector D = ldlt.vectorD();
+    for (Eigen::Index k = 0; k < D.size(); ++k) out.negative += D[k] < 0.0, out.zero += D[k] == 0.0;
+    solve_K = [&](const Vector& b) { return Vector(ldlt.solve(b)); };
+  }
   // x <- M^-1 K x: the largest eigenvalue, and the most negative one when there is one.
   const auto [low, high] = lanczos_extremes(M, [&](const Vector& x) { return Vector(mass.solve(K * x)); }, steps);
   out.max_lambda = std::max(std::abs(low), std::abs(high));
   if (out.negative > 0) out.min_lambda = low;
   // Positive definite: the smallest by shift-invert, x <- K^-1 M x, whose largest is 1 / lambda_min.
   else if (out.zero == 0)
-    out.min_lambda = 1.0 / lanczos_extremes(M, [&](const Vector& x) { return Vector(ldlt.solve(M * x)); }, steps).second;
+    out.min_lambda = 1.0 / lanczos_extremes(M, [&](const Vector& x) { return solve_K(M * x); }, steps).second;
   return out;
 }
 

@@ -129,7 +129,7 @@ SpectrumReport stiffness_spectrum(TangentModel& model, const Loading& loading, c
   // 2. Symmetric: the inertia of K_T (sparse LDL^T), no dense solve and no size limit.
   if (options.sparse_when_symmetric && rep.symmetry_defect <= options.symmetric_tolerance) {
     const PencilInertia in = pencil_inertia(KT_sparse, MT_sparse);
-    rep.method = "sparse LDL^T inertia";
+    rep.method = in.cholesky ? "sparse Cholesky: positive definite" : "sparse LDL^T inertia";
     rep.negative = static_cast<std::size_t>(in.negative);
     rep.singular = static_cast<std::size_t>(in.zero);
     rep.max_abs = in.max_lambda;

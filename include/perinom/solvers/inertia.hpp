@@ -5,7 +5,9 @@
 /// For K symmetric and M symmetric positive definite, the eigenvalues of M^-1 K are real, and
 /// as many are negative as K has negative pivots in K = P^T L D L^T P (K and
 /// M^-1/2 K M^-1/2 are congruent). This answers "is the discrete problem stable?" for any
-/// size a sparse factorization fits in memory.
+/// size a sparse factorization fits in memory. A positive definite K is recognized by a
+/// supernodal Cholesky (CHOLMOD) that succeeds; only when it fails does the simplicial LDL^T
+/// count the negative and zero pivots.
 #include <Eigen/SparseCore>
 
 namespace perinom {
@@ -13,6 +15,7 @@ namespace perinom {
 struct PencilInertia {
   long negative = 0;      ///< negative pivots of K: eigenvalues of M^-1 K below zero
   long zero = 0;          ///< pivots exactly zero (K singular: a rigid mode left free)
+  bool cholesky = false;  ///< decided by a successful supernodal Cholesky (K positive definite)
   double min_lambda = 0;  ///< the smallest eigenvalue of M^-1 K (1/s^2): shift-invert Lanczos when
                           ///< none is negative, else Lanczos on M^-1 K (its lowest Ritz value)
   double max_lambda = 0;  ///< the largest |eigenvalue| (Lanczos; 1/s^2)

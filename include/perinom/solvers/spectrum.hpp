@@ -49,7 +49,8 @@ struct SpectrumReport {
   double symmetry_defect = 0.0;    ///< ||K_T - K_T^T||_F / ||K_T||_F
   double growth_rate = 0.0;        ///< max Im sqrt(lambda) (1/s), principal root
   double seconds = 0.0;            ///< wall time of the check
-  std::string method;              ///< "dense" (all eigenvalues) or "sparse LDL^T inertia"
+  std::string method;              ///< "dense" (all eigenvalues), "sparse Cholesky: positive definite"
+                                   ///< or "sparse LDL^T inertia" (K not positive definite)
   std::size_t singular = 0;        ///< sparse: zero pivots (an unconstrained rigid mode)
 
   /// No negative and no complex eigenvalue beyond the tolerances.
