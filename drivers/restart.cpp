@@ -37,7 +37,8 @@ Restart::Restart(std::string dir, const Scene& scene) : dir_(std::move(dir)) {
   if (scene.solver.type == "newton")
     throw InputError(at + "Newton solves are not checkpointed, so not resumed (adr, verlet and lbc solves are)");
   std::error_code ec;
-  if (!fs::is_directory(dir_, ec)) throw InputError(at + "no such folder");
+  if (!fs::is_directory(dir_, ec))
+    throw InputError(at + (fs::exists(dir_, ec) ? "not a folder (give the output folder of the run)" : "no such folder"));
   const std::string path = dir_ + "/" + checkpoint_name;
   if (!fs::exists(path, ec))
     throw InputError(at + "the folder holds no checkpoint (" + checkpoint_name +

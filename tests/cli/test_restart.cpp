@@ -164,6 +164,10 @@ TEST_CASE("a checkpoint of another scene, a damaged one and a folder without one
     fs::create_directories(d.path / "empty");
     require_one_clear_error(perinom(d, "run scene.yaml --restart empty"), {"--restart empty:", "holds no checkpoint"});
   }
+  SECTION("a file or nothing where the folder should be") {
+    require_one_clear_error(perinom(d, "run scene.yaml --restart scene.yaml"), {"--restart scene.yaml:", "not a folder"});
+    require_one_clear_error(perinom(d, "run scene.yaml --restart nowhere"), {"--restart nowhere:", "no such folder"});
+  }
 }
 
 TEST_CASE("a checkpoint is refused when the point file under the same scene text has moved a particle", "[cli][checkpoint]") {
