@@ -14,6 +14,14 @@ namespace {
 /// Governors alive on this thread: only the outermost one acts.
 thread_local int depth = 0;
 
+/// The last trial's choice and until when it holds: a loop that starts again soon (ADR at
+/// every load step of a load path) keeps it instead of paying for a new trial each time.
+struct Remembered {
+  int threads = 0;
+  double until = 0.0;
+};
+thread_local Remembered remembered;
+
 bool environment_says(const char* value) {
   const char* v = std::getenv("PERINOM_THREAD_GOVERNOR");
   return v && std::strcmp(v, value) == 0;
@@ -26,8 +34,17 @@ ThreadGovernor::ThreadGovernor() {
   active_ = depth == 0 && full_ > 1 && !omp_in_parallel() && !environment_says("off");
   verbose_ = environment_says("verbose");
   ++depth;
-  if (active_) begin(Phase::one, 1, wall_seconds());
+  if (!active_) return;
+  const double now = wall_seconds();
+  if (remembered.threads > 0 && now < remembered.until) {
+    begin(Phase::exploit, remembered.threads, now);
+    until_ = remembered.until;
+  } else {
+    begin(Phase::one, 1, now);
+  }
 }
+
+void ThreadGovernor::forget() { remembered = Remembered{}; }
 
 ThreadGovernor::~ThreadGovernor() {
   --depth;
@@ -51,6 +68,10 @@ void ThreadGovernor::begin(Phase phase, int threads, double now) {
 void ThreadGovernor::tick() {
   if (!active_) return;
   const double now = wall_seconds();
+  if (phase_ == Phase::exploit) {
+    if (now >= until_) begin(Phase::one, 1, now);
+    return;
+  }
   if (!warm_) {  // the iteration that paid for the switch ends here
     warm_ = true;
     start_ = now;
@@ -58,10 +79,6 @@ void ThreadGovernor::tick() {
   }
   ++iterations_;
   const double elapsed = now - start_;
-  if (phase_ == Phase::exploit) {
-    if (elapsed >= exploit_factor * trial_length_) begin(Phase::one, 1, now);
-    return;
-  }
   if (iterations_ < trial_iterations || elapsed < trial_seconds) return;
   if (phase_ == Phase::one) {
     one_ = elapsed / iterations_;
@@ -73,6 +90,8 @@ void ThreadGovernor::tick() {
   trial_length_ += elapsed;
   ++trials_;
   begin(Phase::exploit, team_ < one_ ? full_ : 1, now);
+  until_ = now + exploit_factor * trial_length_;
+  remembered = {current_, until_};
   if (verbose_)
     std::fprintf(stderr, "thread governor: %.3g ms per iteration on 1 thread, %.3g ms on %d: %d\n", one_ * 1e3,
                  team_ * 1e3, full_, current_);

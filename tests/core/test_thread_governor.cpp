@@ -18,6 +18,7 @@ namespace {
 /// Runs a governed loop through its first trial, each iteration sleeping `on_one` ms on one
 /// thread and `on_team` ms on more; returns the count the governor kept.
 int kept_after_trial(int on_one, int on_team) {
+  ThreadGovernor::forget();
   ThreadGovernor governor;
   while (governor.trials() == 0) {
     governor.tick();
@@ -42,8 +43,25 @@ TEST_CASE("the thread governor keeps whichever of one thread and the team runs f
   CHECK(omp_get_max_threads() == 2);   // restored after each loop
 }
 
+TEST_CASE("a loop started again soon after a trial keeps its choice without a new trial", "[core]") {
+  const Team team(2);
+  REQUIRE(kept_after_trial(1, 3) == 1);
+  {
+    ThreadGovernor again;  // as ADR's next load step would
+    CHECK(again.threads() == 1);
+    CHECK(omp_get_max_threads() == 1);
+    for (int it = 0; it < 20; ++it) again.tick();
+    CHECK(again.trials() == 0);
+  }
+  CHECK(omp_get_max_threads() == 2);
+  ThreadGovernor::forget();
+  ThreadGovernor fresh;
+  CHECK(fresh.threads() == 1);  // a new trial, on one thread first
+}
+
 TEST_CASE("the thread governor starts its trial on one thread and restores the caller's count", "[core]") {
   const Team team(2);
+  ThreadGovernor::forget();
   {
     ThreadGovernor governor;
     CHECK(governor.threads() == 1);

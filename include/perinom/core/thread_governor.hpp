@@ -13,7 +13,8 @@ namespace perinom {
 /// thread, then on the team, each for at least `trial_iterations` iterations and
 /// `trial_seconds` (the first iteration after a switch is not timed: it pays for the switch);
 /// the faster count then runs for `exploit_factor` times the trial's length, and the next
-/// trial begins. Short trials mislead: the scheduler favours a thread that has just woken, so a
+/// trial begins. The choice outlives the governor until then: a loop started again within that
+/// time (ADR at each load step of a load path) keeps it without a new trial. Short trials mislead: the scheduler favours a thread that has just woken, so a
 /// team looks fast under load for a few milliseconds. Results do not depend on the choice: the
 /// library's sums are independent of the thread count (core/parallel.hpp).
 ///
@@ -38,6 +39,8 @@ class ThreadGovernor {
   int threads() const { return current_; }
   /// How many trials have ended (with a choice).
   int trials() const { return trials_; }
+  /// Drops the remembered choice: the next governor starts with a trial.
+  static void forget();
 
  private:
   enum class Phase { one, team, exploit };
@@ -50,6 +53,7 @@ class ThreadGovernor {
   double start_ = 0.0;      ///< when the phase's timed iterations began (s)
   long iterations_ = 0;     ///< timed iterations of the phase
   double one_ = 0.0, team_ = 0.0, trial_length_ = 0.0;  ///< s per iteration; s
+  double until_ = 0.0;  ///< when the exploitation ends (s, wall_seconds)
 };
 
 }  // namespace perinom
