@@ -2,6 +2,7 @@
 
 #include "../support/clouds.hpp"
 #include "../support/direct_solve.hpp"
+#include "../support/pulled_bar.hpp"
 #include "perinom/core/error.hpp"
 #include "perinom/scene/problem.hpp"
 #include "perinom/solvers/adr.hpp"
@@ -10,19 +11,8 @@ using namespace perinom;
 
 namespace {
 
-// A plane-stress bar 60 mm x 12 mm, left end on rollers (u_x = 0, one particle also
-// u_y = 0), pulled by a traction of 1 MPa on the right end. Analytic: u_x(L) = t L / E.
-const char* bar = R"(
-name: bar
-dimension: 2
-geometry: {box: {min: [0, 0], max: [0.06, 0.012]}, thickness: 0.01}
-discretization: {dx: 0.002, horizon: {ratio: 3.015}}
-material: {type: linear_elastic, E: 30.0e6, nu: 0.25, density: 2000, plane: stress}
-boundary:
-  - {region: left, fix: [x]}
-  - {region: {box: {min: [0, 0], max: [0.002, 0.002]}}, fix: [y]}
-  - {region: right, traction: [1.0e6, 0]}
-solver: {type: adr, tolerance: 1.0e-10, displacement_tolerance: 1.0e-12}
+// The pulled bar (tests/support/pulled_bar.hpp) with a tight ADR tolerance and a tip probe.
+const std::string bar = test::pulled_bar + R"(solver: {type: adr, tolerance: 1.0e-10, displacement_tolerance: 1.0e-12}
 probes:
   - {name: tip, point: [0.06, 0.006], field: displacement, component: x}
 )";

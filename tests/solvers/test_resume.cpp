@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "../support/cli.hpp"
+#include "../support/pulled_bar.hpp"
 #include "perinom/scene/problem.hpp"
 #include "perinom/solvers/adr.hpp"
 #include "perinom/solvers/load_path.hpp"
@@ -20,18 +21,8 @@ using namespace perinom;
 
 namespace {
 
-// A plane-stress bar 60 mm x 12 mm, left end on rollers, pulled at the right end.
-const char* bar = R"(
-name: bar
-dimension: 2
-geometry: {box: {min: [0, 0], max: [0.06, 0.012]}, thickness: 0.01}
-discretization: {dx: 0.002, horizon: {ratio: 3.015}}
-material: {type: linear_elastic, E: 30.0e6, nu: 0.25, density: 2000, plane: stress}
-boundary:
-  - {region: left, fix: [x]}
-  - {region: {box: {min: [0, 0], max: [0.002, 0.002]}}, fix: [y]}
-  - {region: right, traction: [1.0e6, 0]}
-)";
+// The pulled bar of tests/support/pulled_bar.hpp.
+const std::string& bar = perinom::test::pulled_bar;
 
 bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
