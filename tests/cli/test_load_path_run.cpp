@@ -9,17 +9,13 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include "../support/slurp.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::slurp;
 
 std::size_t lines(const fs::path& p) {
   const std::string s = slurp(p);

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include "../support/slurp.hpp"
 
 namespace fs = std::filesystem;
 
@@ -36,12 +37,7 @@ int run_perinom(const fs::path& dir, const std::string& args) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::slurp;
 
 fs::path scratch(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / ("perinom_run_output_" + name);

@@ -12,17 +12,13 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include "../support/slurp.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::slurp;
 
 struct Run {
   int exit_code = -1;

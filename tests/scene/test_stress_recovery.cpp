@@ -15,6 +15,7 @@
 #include <string>
 
 #include "perinom/scene/problem.hpp"
+#include "../support/slurp.hpp"
 
 namespace fs = std::filesystem;
 using namespace perinom;
@@ -87,12 +88,7 @@ std::pair<double, double> corner_errors(int dim, const std::string& formulation)
   return {err, err_plain};
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::slurp;
 
 }  // namespace
 

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include "slurp.hpp"
 
 namespace bar_test {
 
@@ -39,12 +40,7 @@ struct Outcome {
   std::shared_ptr<Scratch> scratch;
 };
 
-inline std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test_support::slurp;
 
 /// Runs `perinom COMMAND examples/vibrating_bar.yaml --set ...` in a fresh folder (kept
 /// while the Outcome lives, for the test's reads).

@@ -16,6 +16,7 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+#include "slurp.hpp"
 
 #ifndef PERINOM_EXE
 #error "PERINOM_EXE must name the perinom binary (a string literal)"
@@ -88,10 +89,7 @@ inline int line_of(const std::string& scene, const std::string& text) {
   return 1 + static_cast<int>(std::count(scene.begin(), scene.begin() + at, '\n'));
 }
 
-inline std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
+using test_support::slurp;
 
 struct Outcome {
   int exit_code = -1;
