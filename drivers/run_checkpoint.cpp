@@ -7,10 +7,6 @@
 namespace perinom::cli {
 namespace {
 
-// A plastic point of a correspondence model (ModelHistory::values_per_particle): sigma (9),
-// eps_p (9), xi, eps (9); the model checks the count again when it restores them.
-constexpr std::size_t kPointReals = 28;
-
 /// What the checkpoint was written for, and the run's progress.
 io::Checkpoint common(const Problem& p, const RunProgress& run) {
   io::Checkpoint c;
@@ -133,7 +129,7 @@ VerletState verlet_state(const io::Checkpoint& c, std::size_t n) {
   return s;
 }
 
-LoadPathState load_path_state(const io::Checkpoint& c, std::size_t n) {
+LoadPathState load_path_state(const io::Checkpoint& c, std::size_t n, std::size_t history_values) {
   LoadPathState s;
   s.stage = small(c, "load_path.stage"), s.step = small(c, "load_path.step");
   s.iterations = c.integer("load_path.iterations");
@@ -151,8 +147,9 @@ LoadPathState load_path_state(const io::Checkpoint& c, std::size_t n) {
     throw InputError(c.source + ": the checkpoint's load_path.stage_value0_sizes do not fit load_path.stage_value0");
   const auto& points = c.reals("load_path.plastic");
   const auto& flags = c.integers("load_path.flags");
-  if (points.size() != flags.size() * kPointReals)
-    throw InputError(c.source + ": the checkpoint's load_path.plastic does not hold 28 values per flag");
+  if (points.size() != flags.size() * history_values)
+    throw InputError(c.source + ": the checkpoint's load_path.plastic does not hold " + std::to_string(history_values) +
+                     " values per flag");
   s.plastic = points;
   for (const std::int64_t flag : flags) s.flags.push_back(static_cast<std::uint8_t>(flag != 0));
   s.history = c.reals("load_path.history");

@@ -18,7 +18,9 @@ SolveReport solve(Problem& p, const std::string& dir, std::vector<double>& u, io
   // What a checkpoint holds beside the solver's state, as it is when the checkpoint is due.
   const auto progress_now = [&] { return RunProgress{series.steps(), last_snapshot, probes.rows}; };
   if (scene.load_path()) {
-    const LoadPathState state = restart ? load_path_state(restart->checkpoint(), dofs) : LoadPathState{};
+    const ModelHistory* history = p.physics().history();
+    const std::size_t history_values = history ? history->values_per_particle() : 0;
+    const LoadPathState state = restart ? load_path_state(restart->checkpoint(), dofs, history_values) : LoadPathState{};
     return run_load_path(p, dir, u, series, probes, last_snapshot,
                          checkpoint_writer<LoadPathState>(dir, p, progress_now), restart ? &state : nullptr);
   }

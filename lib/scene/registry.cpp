@@ -34,12 +34,20 @@ std::vector<ModelEntry> make_models() {
   correspondence.read = detail::read_correspondence_model;
   correspondence.check = detail::check_body_formulation;
   correspondence.build = build_correspondence_problem;
+  correspondence.memory = [](const Scene& s) {
+    const int d = s.dim;
+    MemoryRates r;
+    r.per_bond = s.model.operator_order == 2 ? (d == 2 ? 283.0 : 421.0) : (d == 2 ? 106.0 : 118.0);
+    if (s.plasticity) r.per_particle = d == 2 ? 430.0 : 650.0;  // the committed and trial states
+    return r;
+  };
   ModelEntry plate;
   plate.name = "thin_plate";
   plate.keys = {{"stabilization", text(d.stabilization), "C_hg of the operator energy"}};
   plate.read = detail::read_plate_model;
   plate.check = detail::check_plate_scene;
   plate.build = build_plate_problem;
+  plate.memory = [](const Scene&) { return MemoryRates{157.0, 0.0, true}; };
   return {correspondence, plate};
 }
 

@@ -50,6 +50,8 @@ TEST_CASE("every registered model builds a problem and answers through Model alo
     REQUIRE(model_scenes.count(entry.name) == 1);
     const Scene scene = parse_scene(model_scenes.at(entry.name), entry.name + ".yaml");
     CHECK(scene.model.type == entry.name);
+    REQUIRE(entry.memory);
+    CHECK(entry.memory(scene).per_bond > 0.0);
     Problem p = build_problem(scene);
     REQUIRE(p.model != nullptr);
     const Model& model = p.physics();

@@ -32,8 +32,16 @@ struct OptionKey {
   std::string note;
 };
 
+/// What a model's build holds, measured (the peak resident bytes of perinom check less the
+/// process before the build, docs/scene-format.md), for the memory estimate before building.
+struct MemoryRates {
+  double per_bond = 0.0;      ///< bytes per bond: operators, workspaces, the build's temporaries
+  double per_particle = 0.0;  ///< bytes per particle beyond those (plastic states)
+  bool nodes_on_edges = false;  ///< the lattice has a node on both ends of each axis (a plate)
+};
+
 /// A model.type: the keys of `model:` it reads (type aside), how it reads and checks them,
-/// and how it builds the problem.
+/// how it builds the problem, and what that build holds in memory.
 struct ModelEntry {
   std::string name;
   std::vector<OptionKey> keys;
@@ -43,6 +51,7 @@ struct ModelEntry {
   std::function<void(const YAML::Node& root, const Scene& scene)> check;
   /// Builds the problem: particles, families, the model, loadings, probes.
   std::function<Problem(const Scene& scene, PhaseTimer* timer)> build;
+  std::function<MemoryRates(const Scene& scene)> memory;
 };
 
 /// The registered models, in the order messages list them.
