@@ -8,6 +8,7 @@
 #include "memory_estimate.hpp"
 #include "perinom/core/error.hpp"
 #include "perinom/scene/problem.hpp"
+#include "perinom/scene/registry.hpp"
 #include "perinom/solvers/jacobian.hpp"
 #include "stability_check.hpp"
 
@@ -81,7 +82,7 @@ int check(const Options& opt) {
   std::printf("    %-30s %10.2f MiB\n", "solver state (u, v, f, ...)",
               mb(model.dofs() * 6 * sizeof(double)));
   total += model.dofs() * 6 * sizeof(double);
-  const bool newton = scene.solver.type == "newton" || scene.solver.check == "newton";
+  const bool newton = solver_of(scene).jacobian || scene.solver.check == "newton";
   if (newton) {
     // The Jacobian's pattern, as the Newton solver will build it (values included).
     const StaticSystem system(p.physics(), p.loading);

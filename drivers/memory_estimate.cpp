@@ -98,7 +98,7 @@ MemoryEstimate estimate_memory(const Scene& s) {
   const double per_bond = rates.per_bond, per_particle = rates.per_particle;
   e.baseline = peak_resident_bytes();
   e.bytes = e.baseline + per_bond * e.bonds + per_particle * e.particles;
-  if (s.solver.type == "newton" || s.solver.check == "newton") {
+  if (solver_of(s).jacobian || s.solver.check == "newton") {
     // The Jacobian couples particles up to two horizons apart: d^2 entries of 16 bytes (a
     // value and a 64-bit column) per pair, and KLU's factors, counted as three times that.
     const double reach = std::min(std::pow(2.0, d) * e.bonds / std::max(e.particles, 1.0), e.particles);

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "perinom/core/error.hpp"
+#include "perinom/scene/registry.hpp"
 
 namespace perinom::cli {
 namespace {
@@ -42,7 +43,7 @@ std::uint64_t positions_fingerprint(const Problem& p) {
 }
 
 std::string checkpoint_solver(const Scene& scene) {
-  return scene.load_path() ? "load_path" : scene.solver.type == "verlet" ? "verlet" : "adr";
+  return scene.load_path() ? "load_path" : solver_of(scene).checkpoint_state;
 }
 
 io::Checkpoint checkpoint_records(const Problem& p, const RunProgress& run, const AdrState& s) {

@@ -161,7 +161,8 @@ int run(const Options& opt) {
                     : "tractions and pressures stay nominal (model.follower_pressure: false)");
   const Json pins = pin_results(p);
   std::fflush(stdout);
-  if (scene.solver.type != "verlet") warn_if_unstable(p);
+  const bool dynamic = solver_of(scene).dynamic;
+  if (!dynamic) warn_if_unstable(p);
   else if (scene.solver.allow_unstable &&
            (scene.model.formulation == "improved" || scene.model.formulation == "strong"))
     std::fprintf(stderr, "perinom: warning: model.formulation %s in explicit dynamics (solver.allow_unstable): "
@@ -171,7 +172,6 @@ int run(const Options& opt) {
   io::PvdSeries series(dir, scene.name);
   std::vector<double> u(p.physics().dofs(), 0.0);
   std::int64_t last_snapshot = -1;
-  const bool dynamic = scene.solver.type == "verlet";
   ProbeHistory probe_history;
   timer.start("solve");
   const SolveReport rep = solve_scene(p, dir, u, series, probe_history, last_snapshot, restart ? &*restart : nullptr);
@@ -261,7 +261,7 @@ int run(const Options& opt) {
   else if (scene.load_path())
     std::printf("perinom: %lld load steps, %lld %s iterations in all; results in %s\n",
                 static_cast<long long>(steps_done), static_cast<long long>(rep.iterations),
-                scene.solver.type == "newton" ? "Newton" : "ADR", dir.c_str());
+                solver_of(scene).iterations_of.c_str(), dir.c_str());
   else
     std::printf("perinom: %s after %lld iterations (residual %.3e); results in %s\n",
                 rep.converged ? "converged" : "NOT converged", static_cast<long long>(rep.iterations),

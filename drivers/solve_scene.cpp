@@ -25,7 +25,7 @@ SolveReport solve(Problem& p, const std::string& dir, std::vector<double>& u, io
                          checkpoint_writer<LoadPathState>(dir, p, progress_now), restart ? &state : nullptr);
   }
   // ADR snapshots are stamped with the iteration, Verlet snapshots with the time (s).
-  const bool dynamic = scene.solver.type == "verlet";
+  const bool dynamic = solver_of(scene).dynamic;
   TerminalProgress progress(scene.solver.type.c_str());
   SolveHooks hooks;
   hooks.progress = &progress;

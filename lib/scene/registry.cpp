@@ -2,7 +2,9 @@
 // defaults and its factory.
 #include "perinom/scene/registry.hpp"
 
+#include <cstdio>
 #include <stdexcept>
+#include <utility>
 
 #include "plate_keys.hpp"
 #include "scene_sections.hpp"
@@ -51,6 +53,13 @@ std::vector<ModelEntry> make_models() {
   return {correspondence, plate};
 }
 
+SolverEntry row(std::string name, std::vector<OptionKey> keys, const SolverSpec& defaults, bool load_path, bool single) {
+  SolverEntry e;
+  e.name = std::move(name), e.keys = std::move(keys), e.defaults = defaults;
+  e.load_path = load_path, e.single = single;
+  return e;
+}
+
 std::vector<SolverEntry> make_solvers() {
   const SolverSpec d;
   const std::vector<OptionKey> balance = {{"tolerance", text(d.tolerance), ""},
@@ -58,13 +67,14 @@ std::vector<SolverEntry> make_solvers() {
                                           {"max_iterations", std::to_string(d.max_iterations), ""},
                                           {"load_steps", std::to_string(d.load_steps), ""},
                                           {"history_every", std::to_string(d.history_every), ""}};
-  SolverEntry adr{"adr", balance, d, true, true, nullptr};
+  SolverEntry adr = row("adr", balance, d, true, true);
   adr.solve = [](Problem& p, std::vector<double>& u, const SolveHooks& h) {
     return solve_adr(p.physics(), p.loading, adr_options(p.scene.solver), u, h.progress, h.observe, h.adr_checkpoints,
                      h.adr_resume);
   };
   adr.keys.push_back({"check", d.check, "none | newton"});
-  SolverEntry verlet{"verlet",
+  adr.checkpoint_state = "adr";
+  SolverEntry verlet = row("verlet",
                      {{"dt", text(d.dt), "0: safety times the stable step"},
                       {"safety", text(d.safety), ""},
                       {"steps", std::to_string(d.steps), ""},
@@ -73,7 +83,9 @@ std::vector<SolverEntry> make_solvers() {
                       {"energy_check", d.energy_check ? "true" : "false", ""},
                       {"energy_tolerance", text(d.energy_tolerance), ""},
                       {"allow_unstable", d.allow_unstable ? "true" : "false", ""}},
-                     d, false, true, nullptr};
+                     d, false, true);
+  verlet.dynamic = true;
+  verlet.checkpoint_state = "verlet";
   verlet.solve = [](Problem& p, std::vector<double>& u, const SolveHooks& h) {
     std::vector<double> v;
     return solve_verlet(p.physics(), p.loading, verlet_options(p.scene.solver), u, v, h.progress, h.observe,
@@ -83,17 +95,19 @@ std::vector<SolverEntry> make_solvers() {
   SolverSpec newton_defaults = d;
   newton_defaults.tolerance = NewtonOptions{}.tolerance;
   newton_defaults.max_iterations = NewtonOptions{}.max_iterations;
-  SolverEntry newton{"newton",
+  SolverEntry newton = row("newton",
                      {{"tolerance", text(newton_defaults.tolerance), ""},
                       {"max_iterations", std::to_string(newton_defaults.max_iterations), ""},
                       {"load_steps", std::to_string(d.load_steps), ""},
                       {"line_search", d.line_search ? "true" : "false", ""},
                       {"step_tolerance", text(d.step_tolerance), ""}},
-                     newton_defaults, true, true, nullptr};
+                     newton_defaults, true, true);
+  newton.jacobian = true;
+  newton.iterations_of = "Newton";
   newton.solve = [](Problem& p, std::vector<double>& u, const SolveHooks& h) {
     return solve_newton(p.physics(), p.loading, newton_options(p.scene.solver), u, h.progress);
   };
-  SolverEntry lbc{"lbc", balance, d, true, false, nullptr};
+  SolverEntry lbc = row("lbc", balance, d, true, false);
   lbc.keys.push_back({"yield_tolerance", text(d.yield_tolerance), ""});
   lbc.keys.push_back({"max_rounds", std::to_string(d.max_rounds), ""});
   lbc.keys.push_back({"check", d.check, "none | newton"});
@@ -122,6 +136,12 @@ const SolverEntry* find_solver(const std::string& name) {
   for (const auto& e : solver_registry())
     if (e.name == name) return &e;
   return nullptr;
+}
+
+const SolverEntry& solver_of(const Scene& scene) {
+  const SolverEntry* entry = find_solver(scene.solver.type);
+  if (!entry) throw std::logic_error("solver.type " + scene.solver.type + " is not registered");
+  return *entry;
 }
 
 std::string model_names() {

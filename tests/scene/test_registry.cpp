@@ -109,6 +109,10 @@ TEST_CASE("the defaults the scene reader applies are the registry's and the solv
     CHECK(find_solver("adr")->defaults.tolerance == AdrOptions{}.tolerance);
     CHECK(find_solver("adr")->defaults.max_iterations == AdrOptions{}.max_iterations);
     CHECK(find_solver("verlet")->defaults.safety == VerletOptions{}.safety);
+    CHECK(find_solver("verlet")->dynamic);
+    CHECK(find_solver("newton")->jacobian);
+    CHECK(find_solver("newton")->checkpoint_state.empty());
+    CHECK(find_solver("adr")->checkpoint_state == "adr");
   }
   SECTION("the options structs the solvers receive are the spec's") {
     const Scene newton = parse_scene(test::pulled_bar + "solver: {type: newton, tolerance: 1e-9}\n", "bar.yaml");

@@ -85,10 +85,18 @@ struct SolverEntry {
   bool load_path = false;   ///< solves load paths (stages, plasticity)
   bool single = false;      ///< solves a single loading
   std::function<SolveReport(Problem& p, std::vector<double>& u, const SolveHooks& hooks)> solve;
+  bool dynamic = false;    ///< integrates in time: snapshots stamped with the time, no static checks
+  bool jacobian = false;   ///< assembles the Jacobian (perinom check sizes it)
+  /// The state its single-loading checkpoints hold ("adr", "verlet"), or "" when it is not
+  /// checkpointed (a load path's is "load_path" whatever the scheme).
+  std::string checkpoint_state;
+  std::string iterations_of = "ADR";  ///< whose iterations a load path's summary line counts
 };
 
 const std::vector<SolverEntry>& solver_registry();
 const SolverEntry* find_solver(const std::string& name);
+/// The row of the scene's solver.type (the reader has checked it); std::logic_error otherwise.
+const SolverEntry& solver_of(const Scene& scene);
 
 /// "a, b, c or d" and "a, b, c" of the registered names, for messages.
 std::string model_names();
