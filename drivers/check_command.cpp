@@ -8,29 +8,12 @@
 #include "memory_estimate.hpp"
 #include "perinom/core/error.hpp"
 #include "perinom/scene/problem.hpp"
+#include "perinom/scene/registry.hpp"
 #include "perinom/solvers/jacobian.hpp"
 #include "stability_check.hpp"
 
 namespace perinom::cli {
 namespace {
-
-const char* support_name(EdgeSupport e) {
-  return e == EdgeSupport::clamped ? "clamped" : e == EdgeSupport::simply_supported ? "simply supported" : "free";
-}
-
-/// The plate's lines of the plan: rigidity, edges, ghosts.
-void print_plate(const Problem& p) {
-  const PlateCloud& c = p.plate->plate();
-  std::printf("  model           thin_plate, D0 = %.6g N m, thickness %g m, stabilization C_hg = %g\n",
-              p.plate->rigidity(), p.scene.geometry.thickness, p.scene.model.stabilization);
-  std::printf("  plate nodes     %ld x %ld (on the edges), %zu ghost nodes outside the supported edges\n",
-              c.nodes[0], c.nodes[1], c.image.size());
-  std::vector<EdgeSupport> e(4, EdgeSupport::free);
-  for (const auto& b : p.scene.boundary)
-    if (b.support) e[b.region.side.axis * 2 + (b.region.side.at_max ? 1 : 0)] = *b.support;
-  std::printf("  edges           left %s, right %s, bottom %s, top %s\n", support_name(e[0]), support_name(e[1]),
-              support_name(e[2]), support_name(e[3]));
-}
 
 /// A body from a mesh or a point file: its elements, sizes against the horizon, groups.
 void print_body(const Problem& p) {
@@ -62,26 +45,17 @@ int check(const Options& opt) {
   Problem p = build_problem(scene, &timer);  // not const: StaticSystem sizes the Jacobian from the model
   const auto mb = [](std::size_t b) { return b / 1048576.0; };
   std::printf("scene %s (%s): valid\n", scene.name.c_str(), scene.source.c_str());
-  std::printf("  dimension       %d%s\n", scene.dim,
-              p.plate ? ", thin plate" : scene.dim == 2 ? (scene.material.plane == PlaneCondition::strain ? ", plane strain" : ", plane stress") : "");
+  // The model's lines: one labelled "dimension" completes the dimension line.
+  const std::vector<PlanLine> plan = p.physics().plan();
+  std::string dimension_note;
+  for (const auto& line : plan)
+    if (line.label == "dimension") dimension_note += line.text;
+  std::printf("  dimension       %d%s\n", scene.dim, dimension_note.c_str());
   std::printf("  particles       %zu\n", p.cloud.size());
   std::printf("  bonds           %zu (%.1f per particle)\n", p.bonds, double(p.bonds) / p.cloud.size());
   if (scene.body_files.given()) print_body(p);
-  if (p.plate) print_plate(p);
-  else std::printf("  model           %s, %s formulation, stabilization C_hg = %g\n",
-                   scene.model.type.c_str(), scene.model.formulation.c_str(), scene.model.stabilization);
-  if (p.model && p.model->formulation() == Formulation::consistent) {
-    const ConsistencyReport& c = p.model->consistency();
-    std::printf("  consistent G~   %zu boundary facets; correction |G~ - G|/|G| = %.3g, %d CG iterations, "
-                "column residual %.2g, facet defect %.2g\n",
-                p.model->trace().facets().size(), c.relative_change, c.iterations, c.residual, c.rhs_defect);
-  }
-  if (p.model && (p.model->formulation() == Formulation::improved || p.model->formulation() == Formulation::strong))
-    std::printf("  subregions      E (strong form, within 2 delta of a surface): %zu particles, "
-                "D (weak form): %zu, surface particles: %zu\n",
-                p.model->surface().band.size(), p.model->surface().interior.size(),
-                static_cast<std::size_t>(std::count(p.model->surface().on_surface.begin(),
-                                                    p.model->surface().on_surface.end(), 1)));
+  for (const auto& line : plan)
+    if (line.label != "dimension") std::printf("  %-15s %s\n", line.label.c_str(), line.text.c_str());
   if (const auto& dp = scene.plasticity)
     std::printf("  material        drucker_prager, phi = %g deg, c = %g Pa, m0 = %g, d0 = %g, h = %g\n",
                 dp->friction_angle * 180.0 / M_PI, dp->cohesion, dp->m0, dp->d0, dp->h);
@@ -108,7 +82,7 @@ int check(const Options& opt) {
   std::printf("    %-30s %10.2f MiB\n", "solver state (u, v, f, ...)",
               mb(model.dofs() * 6 * sizeof(double)));
   total += model.dofs() * 6 * sizeof(double);
-  const bool newton = scene.solver.type == "newton" || scene.solver.check == "newton";
+  const bool newton = solver_of(scene).jacobian || scene.solver.check == "newton";
   if (newton) {
     // The Jacobian's pattern, as the Newton solver will build it (values included).
     const StaticSystem system(p.physics(), p.loading);
@@ -118,16 +92,12 @@ int check(const Options& opt) {
                 "Newton Jacobian (CSR, 64-bit)", mb(bytes), system.jacobian().col.size(), "");
     total += bytes;
   }
-  if (p.plate)
-    std::printf("  not assembled: gradient operator G and stabilization S of elasticity (no correspondence "
-                "model)%s%s\n", newton ? "" : ", Newton Jacobian (no newton solver)",
-                scene.model.stabilization > 0.0 ? "" : ", plate stabilization (C_hg = 0)");
-  else
-    std::printf("  not assembled: Hessian (%s)%s%s\n",
-                p.model->operator_order() == 2 ? "operator order 2 keeps the fit's gradient only"
-                                               : "no second-order model",
-                newton ? "" : ", Newton Jacobian (no newton solver)",
-                scene.model.stabilization > 0.0 ? "" : ", stabilization S (C_hg = 0)");
+  // The model's first item, the Newton Jacobian when no Newton solve needs it, the model's others.
+  std::vector<std::string> items = model.not_assembled();
+  if (!newton) items.insert(items.begin() + std::min<std::size_t>(1, items.size()), "Newton Jacobian (no newton solver)");
+  std::string not_assembled;
+  for (const auto& item : items) not_assembled += (not_assembled.empty() ? "" : ", ") + item;
+  if (!not_assembled.empty()) std::printf("  not assembled: %s\n", not_assembled.c_str());
   std::printf("  total           %.2f MiB (%.1f bytes per bond)\n", mb(total), double(total) / p.bonds);
   std::printf("  peak memory     %.2f MiB (VmHWM, the process so far), estimated before building %.2f MiB\n",
               mb(peak_resident_bytes()), mb(estimate.bytes));

@@ -26,34 +26,16 @@ std::vector<const BoundProbe*> point_probes(const Problem& p) {
 
 }  // namespace
 
-LoadPathOptions load_path_options(const SolverSpec& s) {
-  LoadPathOptions o;
-  parse_load_path_scheme(s.type, o.scheme);
-  o.adr.tolerance = s.tolerance;
-  o.adr.displacement_tolerance = s.displacement_tolerance;
-  o.adr.max_iterations = s.max_iterations;
-  o.newton.line_search = s.line_search;
-  o.newton.step_tolerance = s.step_tolerance;
-  if (s.type == "newton") o.newton.tolerance = s.tolerance, o.newton.max_iterations = static_cast<int>(s.max_iterations);
-  o.yield_tolerance = s.yield_tolerance;
-  o.max_rounds = s.max_rounds;
-  return o;
-}
-
 void ProbeHistory::record(const Problem& p, const LoadStepRecord& r, const std::vector<double>& u) {
   const auto probes = point_probes(p);
   if (probes.empty()) return;
-  const ProbeState state(p, u);
-  const ProbeFields f = state.fields(p, u);
+  const ProbeReadout readout(p, u);
   std::vector<double> row = {double(r.stage), double(r.step), r.load_factor};
-  const int d = p.cloud.dim;
   for (const BoundProbe* probe : probes) {
     const std::size_t i = probe->particles.at(0);
-    row.push_back(point_probe_value(*probe, f));
-    row.push_back(von_mises(state.sigma.data() + i * 9));
-    row.push_back(mean_stress(state.sigma.data() + i * 9));
-    row.push_back(equivalent_strain(state.H.data() + i * d * d, d));
-    row.push_back(f.plastic ? f.plastic->committed()[i].law.xi : 0.0);
+    row.push_back(readout.point(*probe));
+    for (const char* field : {"von_mises", "mean_stress", "equivalent_strain", "eq_plastic_strain"})
+      row.push_back(readout.scalar(field, i));
   }
   rows.push_back(row);
 }
@@ -103,29 +85,33 @@ SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double
       last_snapshot = done;
     }
   };
-  return solve_load_path(*p.model, p.stages, opt, u, nullptr, after_step, checkpoints, resume);
+  SolveHooks hooks;
+  hooks.after_step = after_step;
+  hooks.load_path_checkpoints = checkpoints;
+  hooks.load_path_resume = resume;
+  return solve_problem(p, u, hooks);
 }
 
 io::Json load_path_newton_check(Problem& p, const std::vector<double>& u, const ProbeHistory& first) {
-  PlasticPoints* plastic = p.model->plastic();
-  const std::optional<PlasticPoints> saved = plastic ? std::optional<PlasticPoints>(*plastic) : std::nullopt;
-  if (plastic) plastic->reset();
+  TangentModel& model = p.physics();
+  ModelHistory* history = model.history();
+  const std::optional<HistoryState> saved = history ? std::optional<HistoryState>(history->save_history()) : std::nullopt;
+  if (history) history->reset_history();
   LoadPathOptions opt = load_path_options(p.scene.solver);
   opt.scheme = LoadPathScheme::newton;
   opt.newton = NewtonOptions{};
   ProbeHistory second;
-  std::vector<double> un(p.model->dofs(), 0.0);
+  std::vector<double> un(model.dofs(), 0.0);
   std::vector<LoadStage> stages = p.stages;
   const double t0 = wall_seconds();
-  const SolveReport rep = solve_load_path(*p.model, stages, opt, un, nullptr,
+  const SolveReport rep = solve_load_path(model, stages, opt, un, nullptr,
                                           [&](const LoadStepRecord& r, const std::vector<double>& v) {
                                             second.record(p, r, v);
                                           });
   const double seconds = wall_seconds() - t0;
-  std::vector<double> s, sn;
-  p.model->stress3(un.data(), sn);
-  if (plastic) *plastic = *saved;
-  p.model->stress3(u.data(), s);
+  const std::vector<double> sn = model.stress_measure(un.data());
+  if (history) history->restore_history(*saved);
+  const std::vector<double> s = model.stress_measure(u.data());
   const Difference du = difference(u, un), ds = difference(s, sn);
   // Per probe: max over steps |a - b| over max over steps |b|, for value, von Mises and xi.
   double probes_max = 0.0;

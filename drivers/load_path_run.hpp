@@ -6,12 +6,10 @@
 #include "perinom/io/json_writer.hpp"
 #include "perinom/io/vtk_writer.hpp"
 #include "perinom/scene/problem.hpp"
+#include "perinom/scene/registry.hpp"
 #include "perinom/solvers/load_path.hpp"
 
 namespace perinom::cli {
-
-/// The load-path options a scene asks for (scheme from solver.type).
-LoadPathOptions load_path_options(const SolverSpec& s);
 
 /// Point-probe values after every load step, for the histories and the Newton check.
 struct ProbeHistory {
@@ -32,7 +30,7 @@ SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double
 
 /// solver.check: newton on a load path: solves the same steps again with Newton from the
 /// virgin state, compares the final fields and every step's probe values, then restores the
-/// first solve's plastic states.
+/// first solve's history (a model with history, Model::history()).
 io::Json load_path_newton_check(Problem& p, const std::vector<double>& u, const ProbeHistory& first);
 
 }  // namespace perinom::cli

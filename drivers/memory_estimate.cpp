@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "perinom/core/error.hpp"
+#include "perinom/scene/registry.hpp"
 
 namespace perinom::cli {
 namespace {
@@ -72,12 +73,13 @@ MemoryEstimate estimate_memory(const Scene& s) {
   }
   const int d = s.dim;
   const double dx = s.discretization.dx;
+  const MemoryRates rates = find_model(s.model.type)->memory(s);
   double n[3] = {1, 1, 1}, h[3] = {dx, dx, dx}, cells = 1.0;
   for (int a = 0; a < d; ++a) {
     const double length = s.geometry.max[a] - s.geometry.min[a];
     n[a] = std::max(1.0, std::round(length / dx));
     h[a] = length / n[a];
-    if (s.thin_plate()) n[a] += 1.0;  // nodes on both edges
+    if (rates.nodes_on_edges) n[a] += 1.0;
     cells *= n[a];
   }
   const double solid = 1.0 - hole_fraction(s.geometry);
@@ -92,17 +94,11 @@ MemoryEstimate estimate_memory(const Scene& s) {
   }
   // Name the horizon when the families, not the lattice, are what is large.
   if (e.bonds < 500.0 * e.particles) e.key = "discretization.dx";
-  // Measured peak bytes per bond (VmHWM of perinom check, less the process before the
-  // build, over the bonds; docs/scene-format.md): the operators, the workspaces and the
-  // temporaries of the neighbour search and of the assembly.
-  double per_bond = d == 2 ? 106.0 : 118.0;
-  if (s.thin_plate()) per_bond = 157.0;
-  else if (s.model.operator_order == 2) per_bond = d == 2 ? 283.0 : 421.0;
-  double per_particle = 0.0;
-  if (s.plasticity) per_particle += d == 2 ? 430.0 : 650.0;  // the committed and trial states
+  // The model's measured peak bytes per bond and per particle (its registry row, MemoryRates).
+  const double per_bond = rates.per_bond, per_particle = rates.per_particle;
   e.baseline = peak_resident_bytes();
   e.bytes = e.baseline + per_bond * e.bonds + per_particle * e.particles;
-  if (s.solver.type == "newton" || s.solver.check == "newton") {
+  if (solver_of(s).jacobian || s.solver.check == "newton") {
     // The Jacobian couples particles up to two horizons apart: d^2 entries of 16 bytes (a
     // value and a 64-bit column) per pair, and KLU's factors, counted as three times that.
     const double reach = std::min(std::pow(2.0, d) * e.bonds / std::max(e.particles, 1.0), e.particles);

@@ -3,11 +3,10 @@
 #include <algorithm>
 
 #include "perinom/core/error.hpp"
+#include "perinom/scene/registry.hpp"
 
 namespace perinom::cli {
 namespace {
-
-constexpr std::size_t kPointReals = 28;  // a plastic point: sigma (9), eps_p (9), xi, eps (9)
 
 /// What the checkpoint was written for, and the run's progress.
 io::Checkpoint common(const Problem& p, const RunProgress& run) {
@@ -44,7 +43,7 @@ std::uint64_t positions_fingerprint(const Problem& p) {
 }
 
 std::string checkpoint_solver(const Scene& scene) {
-  return scene.load_path() ? "load_path" : scene.solver.type == "verlet" ? "verlet" : "adr";
+  return scene.load_path() ? "load_path" : solver_of(scene).checkpoint_state;
 }
 
 io::Checkpoint checkpoint_records(const Problem& p, const RunProgress& run, const AdrState& s) {
@@ -79,15 +78,7 @@ io::Checkpoint checkpoint_records(const Problem& p, const RunProgress& run, cons
   std::vector<std::int64_t> sizes;
   for (const auto& v : s.stage_value0) value0.insert(value0.end(), v.begin(), v.end()), sizes.push_back(std::int64_t(v.size()));
   c.put("load_path.stage_value0", std::move(value0)), c.put("load_path.stage_value0_sizes", std::move(sizes));
-  std::vector<double> points;
-  points.reserve(s.plastic.size() * kPointReals);
-  for (const auto& point : s.plastic) {
-    points.insert(points.end(), point.law.sigma, point.law.sigma + 9);
-    points.insert(points.end(), point.law.eps_p, point.law.eps_p + 9);
-    points.push_back(point.law.xi);
-    points.insert(points.end(), point.eps, point.eps + 9);
-  }
-  c.put("load_path.plastic", std::move(points));
+  c.put("load_path.plastic", s.plastic);
   c.put("load_path.flags", std::vector<std::int64_t>(s.flags.begin(), s.flags.end()));
   c.put("load_path.history", s.history);
   return c;
@@ -139,7 +130,7 @@ VerletState verlet_state(const io::Checkpoint& c, std::size_t n) {
   return s;
 }
 
-LoadPathState load_path_state(const io::Checkpoint& c, std::size_t n) {
+LoadPathState load_path_state(const io::Checkpoint& c, std::size_t n, std::size_t history_values) {
   LoadPathState s;
   s.stage = small(c, "load_path.stage"), s.step = small(c, "load_path.step");
   s.iterations = c.integer("load_path.iterations");
@@ -157,17 +148,11 @@ LoadPathState load_path_state(const io::Checkpoint& c, std::size_t n) {
     throw InputError(c.source + ": the checkpoint's load_path.stage_value0_sizes do not fit load_path.stage_value0");
   const auto& points = c.reals("load_path.plastic");
   const auto& flags = c.integers("load_path.flags");
-  if (points.size() != flags.size() * kPointReals)
-    throw InputError(c.source + ": the checkpoint's load_path.plastic does not hold 28 values per flag");
-  for (std::size_t i = 0; i < flags.size(); ++i) {
-    PlasticPoints::Point point;
-    const double* x = points.data() + i * kPointReals;
-    std::copy(x, x + 9, point.law.sigma), std::copy(x + 9, x + 18, point.law.eps_p);
-    point.law.xi = x[18];
-    std::copy(x + 19, x + 28, point.eps);
-    s.plastic.push_back(point);
-    s.flags.push_back(static_cast<std::uint8_t>(flags[i] != 0));
-  }
+  if (points.size() != flags.size() * history_values)
+    throw InputError(c.source + ": the checkpoint's load_path.plastic does not hold " + std::to_string(history_values) +
+                     " values per flag");
+  s.plastic = points;
+  for (const std::int64_t flag : flags) s.flags.push_back(static_cast<std::uint8_t>(flag != 0));
   s.history = c.reals("load_path.history");
   return s;
 }

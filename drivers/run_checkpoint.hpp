@@ -7,9 +7,10 @@
 //   the run's progress: snapshot_times, snapshot_files (one name a line), last_snapshot,
 //     probe_rows with probe_columns (a load path's point-probe histories)
 //   the solver's state, every field of AdrState, VerletState or LoadPathState under its
-//     name, prefixed adr., verlet. or load_path. (load_path.plastic: 28 reals a particle,
-//     the committed stress, plastic strain, xi and strain or F; stage_value0 flattened with
-//     stage_value0_sizes)
+//     name, prefixed adr., verlet. or load_path. (load_path.plastic: the model's committed
+//     history, ModelHistory::values_per_particle() reals a particle: a correspondence model's
+//     28, the committed stress, plastic strain, xi and strain or F; stage_value0 flattened
+//     with stage_value0_sizes)
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -51,7 +52,9 @@ io::Checkpoint checkpoint_records(const Problem& p, const RunProgress& run, cons
 RunProgress run_progress(const io::Checkpoint& c);
 AdrState adr_state(const io::Checkpoint& c, std::size_t dofs);
 VerletState verlet_state(const io::Checkpoint& c, std::size_t dofs);
-LoadPathState load_path_state(const io::Checkpoint& c, std::size_t dofs);
+/// A load path's state; `history_values` is the model's ModelHistory::values_per_particle()
+/// (0 for a model without history).
+LoadPathState load_path_state(const io::Checkpoint& c, std::size_t dofs, std::size_t history_values);
 
 /// The hook that writes dir/checkpoint.bin every output.checkpoint_every iterations, steps
 /// or load steps, with the run's progress as `progress` tells it then.

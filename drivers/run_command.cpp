@@ -14,7 +14,8 @@
 #include "perinom/io/csv_writer.hpp"
 #include "perinom/io/json_writer.hpp"
 #include "perinom/io/vtk_writer.hpp"
-#include "perinom/scene/problem.hpp"
+#include "perinom/models/model_history.hpp"
+#include "perinom/scene/registry.hpp"
 #include "perinom/solvers/adr.hpp"
 #include "perinom/core/timer.hpp"
 #include "perinom/solvers/newton.hpp"
@@ -22,7 +23,6 @@
 #include "load_path_run.hpp"
 #include "memory_estimate.hpp"
 #include "output_folder.hpp"
-#include "plate_output.hpp"
 #include "reactions_output.hpp"
 #include "restart.hpp"
 #include "snapshot.hpp"
@@ -47,15 +47,11 @@ void write_history(const std::string& path, const History& h) {
 /// Probe values into the summary; line probes also into probe_NAME.csv. Prints the point
 /// probes' values.
 Json probe_results(const Problem& p, const std::vector<double>& u, const std::string& dir) {
-  if (p.plate) return plate_probe_results(p, u, dir);
-  const int d = p.cloud.dim;
-  const ProbeState state(p, u);
-  const std::vector<double>& sigma = state.sigma;
-  const ProbeFields fields = state.fields(p, u);
+  const ProbeReadout readout(p, u);
   Json out = Json::object();
   for (const auto& probe : p.probes) {
     if (!probe.spec.is_line) {
-      const double v = point_probe_value(probe, fields);
+      const double v = readout.point(probe);
       if (!std::isfinite(v)) throw SolveError("probe '" + probe.spec.name + "': its value is NaN or Inf");
       out[probe.spec.name] = v;
       std::printf("  %s = %.6e\n", probe.spec.name.c_str(), v);
@@ -63,14 +59,9 @@ Json probe_results(const Problem& p, const std::vector<double>& u, const std::st
     }
     const std::string file = "probe_" + probe.spec.name + ".csv";
     io::CsvWriter csv(dir + "/" + file);
-    csv.header({"s", "x", "y", "z", "ux", "uy", "uz", "von_mises", "value"});
+    csv.header(readout.line_header(probe.spec));
     for (std::size_t k = 0; k < probe.particles.size(); ++k) {
-      const std::size_t i = probe.particles[k];
-      std::vector<double> row(9, 0.0);
-      row[0] = probe.along[k];
-      for (int a = 0; a < d; ++a) row[1 + a] = p.cloud.x[i * d + a], row[4 + a] = u[i * d + a];
-      row[7] = von_mises(sigma.data() + i * 9);
-      row[8] = probe_value(probe.spec, i, fields);
+      const std::vector<double> row = readout.line_row(probe, k);
       for (const double x : row)
         if (!std::isfinite(x)) throw SolveError("probe '" + probe.spec.name + "': a value is NaN or Inf");
       csv.row(row);
@@ -85,17 +76,18 @@ Json probe_results(const Problem& p, const std::vector<double>& u, const std::st
 }
 
 /// How far the committed plastic strain has spread: particles yielded, xi's range and mean.
-Json plastic_summary(const PlasticPoints& plastic) {
+Json plastic_summary(const ModelHistory& history) {
+  const std::vector<double> xi = history.history_variable();
   double lo = INFINITY, hi = 0.0, sum = 0.0;
   std::size_t yielded = 0;
-  for (const auto& point : plastic.committed()) {
-    lo = std::min(lo, point.law.xi), hi = std::max(hi, point.law.xi), sum += point.law.xi;
-    yielded += point.law.xi > 0.0;
+  for (const double x : xi) {
+    lo = std::min(lo, x), hi = std::max(hi, x), sum += x;
+    yielded += x > 0.0;
   }
   Json j = Json::object();
   j["particles_yielded"] = yielded;
-  j["eq_plastic_strain_min"] = plastic.size() ? lo : 0.0;
-  j["eq_plastic_strain_mean"] = plastic.size() ? sum / plastic.size() : 0.0;
+  j["eq_plastic_strain_min"] = xi.size() ? lo : 0.0;
+  j["eq_plastic_strain_mean"] = xi.size() ? sum / xi.size() : 0.0;
   j["eq_plastic_strain_max"] = hi;
   return j;
 }
@@ -107,16 +99,8 @@ Json newton_check(Problem& p, const std::vector<double>& u) {
   TerminalProgress progress("newton check");
   const SolveReport rep = solve_newton(p.physics(), p.loading, newton_options(p.scene.solver), un, &progress);
   const double seconds = wall_seconds() - t0;
-  // The "stress" of a plate is its bending moments (N x 3).
-  std::vector<double> s, sn;
-  if (p.plate) {
-    s.resize(u.size() * 3), sn.resize(u.size() * 3);
-    p.plate->moments(u.data(), s.data());
-    p.plate->moments(un.data(), sn.data());
-  } else {
-    p.model->stress3(u.data(), s);
-    p.model->stress3(un.data(), sn);
-  }
+  // The model's stress measure (a plate's: its bending moments).
+  const std::vector<double> s = p.physics().stress_measure(u.data()), sn = p.physics().stress_measure(un.data());
   const Difference du = difference(u, un), ds = difference(s, sn);
   Json j = Json::object();
   j["displacement_relative_l2"] = du.relative_l2;
@@ -177,9 +161,10 @@ int run(const Options& opt) {
                     : "tractions and pressures stay nominal (model.follower_pressure: false)");
   const Json pins = pin_results(p);
   std::fflush(stdout);
-  if (scene.solver.type != "verlet") warn_if_unstable(p);
-  else if (scene.solver.allow_unstable && p.model &&
-           (p.model->formulation() == Formulation::improved || p.model->formulation() == Formulation::strong))
+  const bool dynamic = solver_of(scene).dynamic;
+  if (!dynamic) warn_if_unstable(p);
+  else if (scene.solver.allow_unstable &&
+           (scene.model.formulation == "improved" || scene.model.formulation == "strong"))
     std::fprintf(stderr, "perinom: warning: model.formulation %s in explicit dynamics (solver.allow_unstable): "
                  "non-symmetric, its energy may grow without bound; the energy-balance guard %s\n",
                  scene.model.formulation.c_str(), scene.solver.energy_check ? "stops the run if it does" : "is off");
@@ -187,7 +172,6 @@ int run(const Options& opt) {
   io::PvdSeries series(dir, scene.name);
   std::vector<double> u(p.physics().dofs(), 0.0);
   std::int64_t last_snapshot = -1;
-  const bool dynamic = scene.solver.type == "verlet";
   ProbeHistory probe_history;
   timer.start("solve");
   const SolveReport rep = solve_scene(p, dir, u, series, probe_history, last_snapshot, restart ? &*restart : nullptr);
@@ -256,7 +240,7 @@ int run(const Options& opt) {
     summary["check"] = scene.load_path() ? load_path_newton_check(p, u, probe_history) : newton_check(p, u);
     timer.start("output");
   }
-  if (const PlasticPoints* plastic = p.model ? p.model->plastic() : nullptr) summary["plasticity"] = plastic_summary(*plastic);
+  if (const ModelHistory* history = p.physics().history()) summary["plasticity"] = plastic_summary(*history);
   summary["probes"] = probes;
   timer.stop();
   Json wall = Json::object();
@@ -277,7 +261,7 @@ int run(const Options& opt) {
   else if (scene.load_path())
     std::printf("perinom: %lld load steps, %lld %s iterations in all; results in %s\n",
                 static_cast<long long>(steps_done), static_cast<long long>(rep.iterations),
-                scene.solver.type == "newton" ? "Newton" : "ADR", dir.c_str());
+                solver_of(scene).iterations_of.c_str(), dir.c_str());
   else
     std::printf("perinom: %s after %lld iterations (residual %.3e); results in %s\n",
                 rep.converged ? "converged" : "NOT converged", static_cast<long long>(rep.iterations),

@@ -1,21 +1,18 @@
 #pragma once
-// The solve of `perinom run`: the scene's solver on the built problem, with its snapshots,
-// its checkpoints (output.checkpoint_every) and, under --restart, resumed from a checkpoint.
+// The solve of `perinom run`: the scene's solver on the built problem (solve_problem, the
+// solver registry), with its snapshots, its checkpoints (output.checkpoint_every) and, under
+// --restart, resumed from a checkpoint.
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "perinom/io/vtk_writer.hpp"
 #include "perinom/scene/problem.hpp"
-#include "perinom/solvers/adr.hpp"
-#include "perinom/solvers/newton.hpp"
+#include "perinom/scene/registry.hpp"
 #include "load_path_run.hpp"
 #include "restart.hpp"
 
 namespace perinom::cli {
-
-/// The Newton options the scene's solver keys ask for (also the Newton check's).
-NewtonOptions newton_options(const SolverSpec& s);
 
 /// Solves p into u (from rest, or from `restart`'s state when given), adding snapshots to
 /// `series` in dir (last_snapshot: the iteration, step or load step of the last one) and,

@@ -25,10 +25,8 @@ void print_spectrum(const SpectrumReport& r) {
 }
 
 void warn_if_unstable(Problem& p) {
-  if (!p.model) return;
-  const Formulation f = p.model->formulation();
-  if (f != Formulation::improved && f != Formulation::strong) return;
   const std::string name = p.scene.model.formulation;
+  if (name != "improved" && name != "strong") return;
   const Loading& loading = checked_loading(p);
   const SpectrumOptions options;
   const std::size_t n = free_dofs(p.physics(), loading);

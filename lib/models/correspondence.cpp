@@ -43,6 +43,8 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
       material_(material),
       surface_(std::move(surface)),
       volume_(cloud.volume) {
+  c_hg_ = options.stabilization;
+  x_ = cloud.x;
   const bool consistent = formulation_ == Formulation::consistent;
   if (consistent && facets.empty())
     throw std::invalid_argument("CorrespondenceModel: the consistent formulation needs the boundary facets");

@@ -76,8 +76,9 @@ Problem build_plate_problem(const Scene& s, PhaseTimer* timer) {
   opt.thickness = s.geometry.thickness;
   opt.influence = s.discretization.weight;
   opt.stabilization = s.model.stabilization;
+  opt.edges = edges;
   try {
-    p.plate = std::make_unique<ThinPlateModel>(std::move(plate), families, opt);
+    p.model = std::make_unique<ThinPlateModel>(std::move(plate), families, opt);
   } catch (const InputError& e) {
     throw InputError(s.source + ": " + horizon + ": " + e.what());
   }

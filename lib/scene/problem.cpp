@@ -50,7 +50,7 @@ constexpr double kBalanceTolerance = 1e-8;
 
 /// constraints: rigid_body. Refuses loads that are not balanced (every stage's loads at its
 /// end), then pins the body in every loading.
-void pin_rigid_body(Problem& p) {
+void pin_rigid_body(Problem& p, const CorrespondenceModel& model) {
   const Scene& s = p.scene;
   std::vector<Loading*> loadings = {&p.loading};
   for (auto& st : p.stages) loadings.push_back(&st.loading);
@@ -73,7 +73,7 @@ void pin_rigid_body(Problem& p) {
             list(r.moment.data(), d == 2 ? 1 : 3) + " N m about the centroid, against " +
             list(&r.force_scale, 1) + " N of nodal loads (rigid_body needs a body in equilibrium under its loads alone)";
     // Layer loads act at the particles: on a jittered cloud their moments need not cancel.
-    if (p.model->trace().empty() && s.discretization.jitter > 0.0)
+    if (model.trace().empty() && s.discretization.jitter > 0.0)
       text += "; this formulation applies tractions at the jittered particles, whose moments need not cancel: "
               "the consistent formulation applies them at the faces";
     throw InputError(s.source + ": constraints: " + text);
@@ -143,8 +143,7 @@ Families scene_families(const Scene& s, const PointCloud& cloud) {
   }
 }
 
-Problem build_problem(const Scene& s, PhaseTimer* timer) {
-  if (s.thin_plate()) return build_plate_problem(s, timer);
+Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   Problem p;
   p.scene = s;
   if (timer) timer->start("discretization");
@@ -203,14 +202,15 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
                            opt.formulation == Formulation::strong ? INFINITY : 2.0 * delta);
   }
   if (opt.formulation != Formulation::consistent) facets = BoundaryFacets{};
+  std::unique_ptr<CorrespondenceModel> model;
   try {
-    p.model = std::make_unique<CorrespondenceModel>(p.cloud, families, s.material, opt, std::move(surface),
-                                                    std::move(facets));
+    model = std::make_unique<CorrespondenceModel>(p.cloud, families, s.material, opt, std::move(surface),
+                                                  std::move(facets));
   } catch (const InputError& e) {
     throw InputError(s.source + ": " + horizon + ": " + e.what());
   }
   // The loads see the trace's facets (the consistent formulation) or the body's own.
-  BoundaryData data{p.model->trace().empty() ? &body.facets : &p.model->trace().facets(), &p.groups, &p.model->trace()};
+  BoundaryData data{model->trace().empty() ? &body.facets : &model->trace().facets(), &p.groups, &model->trace()};
   FaceOf face_of;
   p.loading = make_loading(s, s.boundary, p.cloud, face_of, data);
   std::vector<FaceOf> stage_faces;
@@ -224,14 +224,15 @@ Problem build_problem(const Scene& s, PhaseTimer* timer) {
     stage_faces.emplace_back();
     p.stages.push_back({st.name, st.steps, make_loading(s, boundary, p.cloud, stage_faces.back(), data)});
   }
-  if (s.constraints == "rigid_body") pin_rigid_body(p);
-  if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, p.model->G(), data);
+  if (s.constraints == "rigid_body") pin_rigid_body(p, *model);
+  if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, model->G(), data);
   // The seed's collocation formulations keep collocated constraints (loading.hpp).
   const bool collocated = opt.formulation == Formulation::improved || opt.formulation == Formulation::strong;
   p.loading.collocated = collocated;
   for (auto& stage : p.stages) stage.loading.collocated = collocated;
   for (std::size_t k = 0; k < p.stages.size(); ++k)
-    if (!stage_faces[k].empty()) couple_to_faces(p.stages[k].loading, stage_faces[k], s.geometry, p.cloud, p.model->G(), data);
+    if (!stage_faces[k].empty()) couple_to_faces(p.stages[k].loading, stage_faces[k], s.geometry, p.cloud, model->G(), data);
+  p.model = std::move(model);
   if (timer) timer->stop();
   return p;
 }
@@ -285,7 +286,11 @@ double probe_value(const ProbeSpec& spec, std::size_t i, const ProbeFields& f) {
   if (spec.field == "displacement") return f.u[i * d + axis_of(spec.component[0])];
   if (stress_field(spec.field)) return stress_probe_value(spec, f.sigma.data() + i * 9);
   if (spec.field == "equivalent_strain") return equivalent_strain(f.H.data() + i * d * d, d);
-  if (spec.field == "eq_plastic_strain") return f.plastic ? f.plastic->committed()[i].law.xi : 0.0;
+  if (spec.field == "eq_plastic_strain")
+    return f.plastic ? f.plastic->committed()[i].law.xi : f.eq_plastic_strain ? (*f.eq_plastic_strain)[i] : 0.0;
+  if (f.fields)
+    for (const auto& field : *f.fields)
+      if (field.name == spec.field) return field.values[i * field.components];
   throw std::logic_error("probe_value: unknown field " + spec.field);
 }
 

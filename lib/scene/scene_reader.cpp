@@ -8,6 +8,7 @@
 
 #include "perinom/core/error.hpp"
 #include "perinom/models/correspondence.hpp"
+#include "perinom/scene/registry.hpp"
 #include "perinom/scene/scene.hpp"
 #include "plate_keys.hpp"
 #include "scene_sections.hpp"
@@ -181,21 +182,30 @@ void read_material(Fields f, Scene& s) {
   f.finish();
 }
 
+/// model.type from the registry, then that model's keys.
 void read_model(Fields f, Scene& s) {
-  s.model.type = f.text("type", "correspondence");
-  if (s.model.type == "thin_plate") return detail::read_plate_model(f, s);
-  if (s.model.type != "correspondence") f.fail("type", "unknown model type (known: correspondence, thin_plate)");
-  s.model.formulation = f.text("formulation", "consistent");
+  s.model.type = f.text("type", ModelSpec{}.type);
+  const ModelEntry* entry = find_model(s.model.type);
+  if (!entry) f.fail("type", "unknown model type (known: " + model_names() + ")");
+  entry->read(f, s);
+}
+
+}  // namespace
+
+namespace detail {
+
+void read_correspondence_model(Fields& f, Scene& s) {
+  s.model.formulation = f.text("formulation", ModelSpec{}.formulation);
   Formulation parsed;
   if (!parse_formulation(s.model.formulation, parsed))
     f.fail("formulation", "must be consistent, classical, improved or strong");
-  s.model.stabilization = f.number("stabilization", 0.5);
+  s.model.stabilization = f.number("stabilization", ModelSpec{}.stabilization);
   if (s.model.stabilization < 0.0) f.fail("stabilization", "must be zero or positive");
-  s.model.stabilization_storage = f.text("stabilization_storage", "auto");
+  s.model.stabilization_storage = f.text("stabilization_storage", ModelSpec{}.stabilization_storage);
   StabilizationStorage storage;
   if (!parse_stabilization_storage(s.model.stabilization_storage, storage))
     f.fail("stabilization_storage", "must be auto, fused, assembled or matrix_free");
-  s.model.weight_precision = f.text("weight_precision", "double");
+  s.model.weight_precision = f.text("weight_precision", ModelSpec{}.weight_precision);
   if (s.model.weight_precision != "double" && s.model.weight_precision != "single")
     f.fail("weight_precision", "must be double or single");
   // The consistent formulation fits second order by default: bending needs G exact for
@@ -208,7 +218,7 @@ void read_model(Fields f, Scene& s) {
   if (s.model.formulation == "consistent" && s.model.stabilization > 0.0 && storage != StabilizationStorage::automatic &&
       storage != StabilizationStorage::assembled)
     f.fail("stabilization_storage", "the consistent formulation stores the stabilization assembled (use auto or assembled)");
-  s.model.kinematics = f.text("kinematics", "small_strain");
+  s.model.kinematics = f.text("kinematics", ModelSpec{}.kinematics);
   if (s.model.kinematics != "small_strain" && s.model.kinematics != "finite_rotation")
     f.fail("kinematics", "must be small_strain or finite_rotation");
   if (s.model.kinematics == "finite_rotation" && !s.plasticity)
@@ -219,11 +229,21 @@ void read_model(Fields f, Scene& s) {
   f.finish();
 }
 
+}  // namespace detail
+
+namespace {
+
+/// solver.type from the registry; the keys start from that solver's defaults.
 void read_solver(Fields f, Scene& s) {
   auto& v = s.solver;
   v.type = f.text("type", s.plasticity ? "lbc" : "adr");
-  if (v.type != "adr" && v.type != "verlet" && v.type != "newton" && v.type != "lbc")
-    f.fail("type", "must be adr, verlet, newton or lbc");
+  const SolverEntry* entry = find_solver(v.type);
+  if (!entry) f.fail("type", "must be " + solver_names_or());
+  {
+    const std::string type = v.type;
+    v = entry->defaults;
+    v.type = type;
+  }
   if (v.type == "verlet" && s.plasticity)
     f.fail("type", "verlet is not available with a drucker_prager material (use lbc, adr or newton)");
   if (v.type == "verlet" && !s.stages.empty()) f.fail("type", "verlet does not run load stages (use lbc, adr or newton)");
@@ -231,7 +251,6 @@ void read_solver(Fields f, Scene& s) {
     f.fail("type", "a thin_plate is elastic: solve it by adr or newton (static) or verlet (dynamic)");
   if (!s.stages.empty() && f.has("load_steps")) f.fail("load_steps", "with stages, each stage sets its steps");
   const bool newton = v.type == "newton";
-  if (newton) v.tolerance = 1e-10, v.max_iterations = 50;
   v.tolerance = f.number("tolerance", v.tolerance);
   if (!(v.tolerance > 0.0)) f.fail("tolerance", "must be positive");
   v.displacement_tolerance = f.number("displacement_tolerance", v.displacement_tolerance);
@@ -304,6 +323,10 @@ void refuse_unstable_dynamics(const YAML::Node& root, const Scene& s) {
                    "use consistent or classical, or set solver.allow_unstable: true to run it anyway");
 }
 
+}  // namespace
+
+namespace detail {
+
 /// A body from files has no box, so only the formulations that need no box surface apply;
 /// the consistent one needs facets, which a point file has only with geometry.facets.
 void check_body_formulation(const YAML::Node& root, const Scene& s) {
@@ -320,6 +343,10 @@ void check_body_formulation(const YAML::Node& root, const Scene& s) {
     throw InputError(at + "the consistent formulation (the default) needs the boundary facets, and " + body +
                      " has none: give geometry.facets, or use formulation classical");
 }
+
+}  // namespace detail
+
+namespace {
 
 /// The scene text as one YAML document. A second document (a stray "---") would be
 /// dropped by YAML::Load without a word, and with it every key below the separator.
@@ -389,8 +416,7 @@ Scene parse_scene(const std::string& text, const std::string& source,
   read_material(top.map("material"), s);
   if (top.has("model")) read_model(top.map("model"), s);
   else top.mark("model");
-  if (s.thin_plate()) detail::check_plate_scene(root, s);
-  else check_body_formulation(root, s);
+  find_model(s.model.type)->check(root, s);
   s.boundary = read_boundary(top.list("boundary"), source, s);
   read_stages(top.list("stages"), source, s);
   read_constraints(top, s);

@@ -16,6 +16,9 @@ std::vector<BoundarySpec> read_boundary(const std::vector<YAML::Node>& items, co
                                         const Scene& s, const std::string& key = "boundary");
 /// `stages`: each with its name, steps and boundary list.
 void read_stages(const std::vector<YAML::Node>& items, const std::string& source, Scene& s);
+/// model.type correspondence: its keys (registry.hpp), and what it needs of a body from files.
+void read_correspondence_model(Fields& f, Scene& s);
+void check_body_formulation(const YAML::Node& root, const Scene& s);
 /// `probes`.
 void read_probes(const std::vector<YAML::Node>& items, const std::string& source, Scene& s);
 

@@ -1,4 +1,4 @@
-#include "perinom/solvers/inertia.hpp"
+#include "inertia.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/CholmodSupport>

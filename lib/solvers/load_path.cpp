@@ -11,14 +11,12 @@ namespace perinom {
 namespace {
 
 // xi of every particle (empty for an elastic model).
-std::vector<double> plastic_strains(const CorrespondenceModel& model) {
-  std::vector<double> xi;
-  if (const PlasticPoints* p = model.plastic())
-    for (const auto& point : p->committed()) xi.push_back(point.law.xi);
-  return xi;
+std::vector<double> plastic_strains(const TangentModel& model) {
+  const ModelHistory* h = model.history();
+  return h ? h->history_variable() : std::vector<double>{};
 }
 
-void count_plastic(const CorrespondenceModel& model, const std::vector<double>& xi_before,
+void count_plastic(const TangentModel& model, const std::vector<double>& xi_before,
                    LoadStepRecord& r) {
   const auto xi = plastic_strains(model);
   r.yielding = r.plastic = 0;
@@ -42,7 +40,7 @@ bool parse_load_path_scheme(const std::string& type, LoadPathScheme& s) {
   return true;
 }
 
-SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& stages,
+SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
                             const LoadPathOptions& opt, std::vector<double>& u, Progress* progress,
                             const std::function<void(const LoadStepRecord&, const std::vector<double>&)>&
                                 after_step,
@@ -61,9 +59,9 @@ SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& 
     for (const auto& name : st.loading.support_names) supports.add_support(name);
   for (const auto& c : supports.reaction_columns(d)) rep.history.columns.push_back(c);
   std::vector<double> fint(supports.has_supports() ? model.dofs() : 0), stage_reactions;
-  PlasticPoints* plastic = model.plastic();
+  ModelHistory* plastic = model.history();
   if (plastic)
-    plastic->set_mode(opt.scheme == LoadPathScheme::lbc ? PlasticMode::lbc : PlasticMode::return_map);
+    plastic->set_history_mode(opt.scheme == LoadPathScheme::lbc ? HistoryMode::flagged : HistoryMode::return_map);
   AdrOptions balance_opt = opt.adr;
   balance_opt.history_every = balance_opt.max_iterations + 1;  // no per-iteration rows
   std::optional<AdrRelaxation> adr;
@@ -114,7 +112,7 @@ SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& 
         std::vector<double> xi0 = plastic_strains(model);
         double t0 = wall_seconds();
         nopt.after_step = [&](int step, const std::vector<double>& un, long iterations, double residual) {
-          model.commit(un.data());
+          if (plastic) plastic->commit(un.data());
           LoadStepRecord r;
           r.stage = static_cast<int>(k) + 1, r.step = step;
           r.load_factor = double(step) / stage.steps;
@@ -153,7 +151,7 @@ SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& 
         r.load_factor = static_cast<double>(step) / stage.steps;
         adr->set_load_step(++done, total_steps);
         SolveReport balance;
-        const std::function<void()> commit_each = [plastic] { plastic->commit(); };
+        const std::function<void()> commit_each = [plastic] { plastic->commit_trial(); };
         for (;;) {
           bool ok = false;
           try {
@@ -182,7 +180,7 @@ SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& 
                              std::to_string(r.rounds) + " correction rounds (solver.max_rounds)");
         }
         rep.iterations += r.iterations;
-        model.commit(u.data());
+        if (plastic) plastic->commit(u.data());
         record(r, xi0, t0);
         if (checkpoints.due(done)) checkpoints.call(detail::state_after(model, stages, int(k), step, u, u_prev, rep));
       }

@@ -4,18 +4,18 @@
 
 namespace perinom::detail {
 
-int restore(CorrespondenceModel& model, std::vector<LoadStage>& stages, const LoadPathState& st,
+int restore(TangentModel& model, std::vector<LoadStage>& stages, const LoadPathState& st,
             std::vector<double>& u, SolveReport& rep) {
   const bool fits = st.stage >= 0 && st.stage < int(stages.size()) && st.step >= 1 && st.step <= stages[st.stage].steps &&
                     st.stage_value0.size() == std::size_t(st.stage) + 1 && st.u.size() == u.size() &&
                     st.u_prev.size() == u.size() && st.history.size() % rep.history.columns.size() == 0 &&
-                    (model.plastic() || st.plastic.empty());
+                    (model.history() || st.plastic.empty());
   if (!fits) throw std::invalid_argument("solve_load_path: the resumed state does not fit the model and stages");
   u = st.u;
   rep.iterations = st.iterations;
   rep.residual = st.residual;
   rep.history.values = st.history;
-  if (PlasticPoints* plastic = model.plastic()) plastic->restore(st.plastic, st.flags);
+  if (ModelHistory* h = model.history()) h->restore_history({st.plastic, st.flags});
   for (int j = 0; j <= st.stage; ++j) {
     Loading& loading = stages[j].loading;
     loading.begin_stage(j > 0 ? &stages[j - 1].loading : nullptr, u.data());
@@ -26,13 +26,16 @@ int restore(CorrespondenceModel& model, std::vector<LoadStage>& stages, const Lo
   return steps_done(st, stages);
 }
 
-LoadPathState state_after(const CorrespondenceModel& model, const std::vector<LoadStage>& stages, int k, int step,
+LoadPathState state_after(const TangentModel& model, const std::vector<LoadStage>& stages, int k, int step,
                           const std::vector<double>& u, const std::vector<double>& u_prev, const SolveReport& rep) {
   LoadPathState st;
   st.stage = k, st.step = step, st.iterations = rep.iterations, st.residual = rep.residual;
   st.u = u, st.u_prev = u_prev;
   for (int j = 0; j <= k; ++j) st.stage_value0.push_back(stages[j].loading.value0);
-  if (const PlasticPoints* plastic = model.plastic()) st.plastic = plastic->committed(), st.flags = plastic->flags();
+  if (const ModelHistory* h = model.history()) {
+    HistoryState saved = h->save_history();
+    st.plastic = std::move(saved.values), st.flags = std::move(saved.flags);
+  }
   st.history = rep.history.values;
   return st;
 }

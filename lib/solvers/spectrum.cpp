@@ -11,7 +11,7 @@
 #include <cstdio>
 
 #include "perinom/core/error.hpp"
-#include "perinom/solvers/inertia.hpp"
+#include "inertia.hpp"
 
 namespace perinom {
 namespace {

@@ -102,20 +102,20 @@ std::string patch_scene(const std::string& mesh, int dim, const char* lo[3], con
 /// Largest errors of the displacement and the stress against the uniform state, relative.
 std::pair<double, double> patch_errors(const std::string& scene, int dim) {
   Problem p = build_problem(parse_scene(scene, "patch"));
-  const LinearElastic& mat = p.model->material();
+  const LinearElastic& mat = p.as<CorrespondenceModel>().material();
   Eigen::MatrixXd A = Eigen::MatrixXd::Constant(dim, dim, mat.lambda());
   A.diagonal().array() += 2.0 * mat.mu();
   Eigen::VectorXd sigma(dim);
   for (int a = 0; a < dim; ++a) sigma[a] = traction[a];
   const Eigen::VectorXd eps = A.lu().solve(sigma);
-  std::vector<double> exact(p.model->dofs());
+  std::vector<double> exact(p.as<CorrespondenceModel>().dofs());
   for (std::size_t i = 0; i < p.cloud.size(); ++i)
     for (int a = 0; a < dim; ++a) exact[i * dim + a] = eps[a] * p.cloud.x[i * dim + a];
-  const auto u = test::direct_solve(*p.model, p.loading);
+  const auto u = test::direct_solve(p.as<CorrespondenceModel>(), p.loading);
   double du = 0.0, scale = 0.0;
   for (std::size_t k = 0; k < u.size(); ++k) du = std::max(du, std::abs(u[k] - exact[k])), scale = std::max(scale, std::abs(exact[k]));
   std::vector<double> s3;
-  p.model->stress3(u.data(), s3);
+  p.as<CorrespondenceModel>().stress3(u.data(), s3);
   double ds = 0.0;
   for (std::size_t i = 0; i < p.cloud.size(); ++i)
     for (int a = 0; a < dim; ++a)

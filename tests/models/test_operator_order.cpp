@@ -49,11 +49,11 @@ std::vector<double> field(const PointCloud& c, bool quadratic) {
 TEST_CASE("the second-order G is exact for quadratic displacements at every particle, boundary included",
           "[models][operator_order]") {
   Problem p = block("classical", 0.25);
-  REQUIRE(p.model->operator_order() == 2);
+  REQUIRE(p.as<CorrespondenceModel>().operator_order() == 2);
   const PointCloud& c = p.cloud;
   const std::vector<double> u = field(c, true);
   std::vector<double> H(c.size() * 4);
-  p.model->gradient(u.data(), H.data());
+  p.as<CorrespondenceModel>().gradient(u.data(), H.data());
   double err = 0.0;
   for (std::size_t i = 0; i < c.size(); ++i) {
     const double x = c.x[2 * i], y = c.x[2 * i + 1];
@@ -64,7 +64,7 @@ TEST_CASE("the second-order G is exact for quadratic displacements at every part
   CHECK(err < 1e-12);
   // The first-order G is not: its error at the boundary is O(dx) (about 1e-3 here).
   Problem q = block("classical", 0.25, 1);
-  q.model->gradient(u.data(), H.data());
+  q.as<CorrespondenceModel>().gradient(u.data(), H.data());
   double err1 = 0.0;
   for (std::size_t i = 0; i < c.size(); ++i) {
     const double x = c.x[2 * i], y = c.x[2 * i + 1];
@@ -80,10 +80,10 @@ TEST_CASE("order 2: no force for a linear displacement away from the surface, st
     Problem p = block("strong", 0.25);
     const std::vector<double> u = field(p.cloud, false);
     std::vector<double> f(u.size()), H(u.size() * 2), sigma;
-    p.model->internal_force(u.data(), f.data());
-    p.model->stress3(u.data(), sigma);
+    p.as<CorrespondenceModel>().internal_force(u.data(), f.data());
+    p.as<CorrespondenceModel>().stress3(u.data(), sigma);
     const double scale = std::abs(sigma[0]) + std::abs(sigma[4]);
-    const Surface& s = p.model->surface();
+    const Surface& s = p.as<CorrespondenceModel>().surface();
     for (std::size_t i = 0; i < p.cloud.size(); ++i) {
       const double V = p.cloud.volume[i];
       const double* m = s.normal_over_h.data() + 2 * i;
@@ -99,8 +99,8 @@ TEST_CASE("order 2: no force for a linear displacement away from the surface, st
     Problem p = block("classical", 0.0, 2, 0.5, 2.015);
     const std::vector<double> u = field(p.cloud, false);
     std::vector<double> f(u.size()), sigma;
-    p.model->internal_force(u.data(), f.data());
-    p.model->stress3(u.data(), sigma);
+    p.as<CorrespondenceModel>().internal_force(u.data(), f.data());
+    p.as<CorrespondenceModel>().stress3(u.data(), sigma);
     const double scale = (std::abs(sigma[0]) + std::abs(sigma[4])) * 1e-6 / 1e-3;  // sigma V / dx
     const double reach = 2 * 2.015e-3;
     std::size_t inside = 0;
@@ -117,16 +117,16 @@ TEST_CASE("order 2: no force for a linear displacement away from the surface, st
 TEST_CASE("order 2: the classical force is the derivative of the energy, stabilization included",
           "[models][operator_order]") {
   Problem p = block("classical", 0.25);
-  REQUIRE(p.model->assembled_stabilization() != nullptr);
-  const std::size_t n = p.model->dofs();
+  REQUIRE(p.as<CorrespondenceModel>().assembled_stabilization() != nullptr);
+  const std::size_t n = p.as<CorrespondenceModel>().dofs();
   const std::vector<double> u = test::random_field(n, 1e-5, 9);
   std::vector<double> f(n);
-  p.model->internal_force(u.data(), f.data());
+  p.as<CorrespondenceModel>().internal_force(u.data(), f.data());
   const double fmax = test::max_abs(f), h = 1e-9;
   for (const std::size_t k : {std::size_t(0), std::size_t(7), n / 2, n - 1}) {
     std::vector<double> up = u, um = u;
     up[k] += h, um[k] -= h;
-    const double fd = (p.model->energy(up.data()) - p.model->energy(um.data())) / (2 * h);
+    const double fd = (p.as<CorrespondenceModel>().energy(up.data()) - p.as<CorrespondenceModel>().energy(um.data())) / (2 * h);
     INFO("dof " << k);
     CHECK(std::abs(fd - f[k]) <= 1e-6 * fmax);
   }
@@ -136,13 +136,13 @@ TEST_CASE("order 2: the tangent rows are the derivative of the force", "[models]
   for (const char* formulation : {"classical", "improved", "strong"})
     for (const double c_hg : {0.0, 0.5}) {
       Problem p = block(formulation, 0.25, 2, c_hg);
-      const std::size_t n = p.model->dofs();
+      const std::size_t n = p.as<CorrespondenceModel>().dofs();
       const std::vector<double> u = test::random_field(n, 1e-5, 1), v = test::random_field(n, 1e-5, 2);
       std::vector<double> fu(n), fuv(n), uv(u), Kv(n, 0.0);
       for (std::size_t k = 0; k < n; ++k) uv[k] += v[k];
-      p.model->internal_force(u.data(), fu.data());
-      p.model->internal_force(uv.data(), fuv.data());
-      p.model->visit_tangent_rows([&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& b) {
+      p.as<CorrespondenceModel>().internal_force(u.data(), fu.data());
+      p.as<CorrespondenceModel>().internal_force(uv.data(), fuv.data());
+      p.as<CorrespondenceModel>().visit_tangent_rows([&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& b) {
         for (std::size_t q = 0; q < cols.size(); ++q)
           for (int a = 0; a < 2; ++a)
             for (int c = 0; c < 2; ++c) Kv[2 * i + a] += b[(q * 2 + a) * 2 + c] * v[2 * cols[q] + c];
@@ -164,8 +164,8 @@ Problem demo(int order, const std::string& formulation) {
 
 double top_centre_uy(Problem& p, const std::vector<double>& u) {
   std::vector<double> sigma, H(u.size() * 2);
-  p.model->stress3(u.data(), sigma);
-  p.model->gradient(u.data(), H.data());
+  p.as<CorrespondenceModel>().stress3(u.data(), sigma);
+  p.as<CorrespondenceModel>().gradient(u.data(), H.data());
   return point_probe_value(p.probes.at(0), {p.cloud, u, sigma, H});
 }
 
@@ -173,7 +173,7 @@ double top_centre_uy(Problem& p, const std::vector<double>& u) {
 
 TEST_CASE("order 2: ADR and Newton agree on the demo scene", "[models][operator_order][newton]") {
   Problem p = demo(2, "improved");
-  const auto r = test::adr_and_newton(*p.model, p.loading);
+  const auto r = test::adr_and_newton(p.as<CorrespondenceModel>(), p.loading);
   WARN("demo, operator order 2: ADR (tolerance 1e-11) and Newton differ by " << r.relative_l2 << " (relative L2)");
   CHECK(r.relative_l2 < 1e-6);
 }
@@ -193,7 +193,7 @@ TEST_CASE("operator order 1 and 2 on the demo against the CalculiX reference", "
     for (const int order : {1, 2}) {
       Problem p = demo(order, formulation);
       std::vector<double> u;
-      REQUIRE(solve_newton(*p.model, p.loading, NewtonOptions{}, u).converged);
+      REQUIRE(solve_newton(p.as<CorrespondenceModel>(), p.loading, NewtonOptions{}, u).converged);
       const double uy = top_centre_uy(p, u);
       error[order] = uy / fem - 1.0;
       WARN(formulation << ", operator order " << order << ": top_center_uy = " << uy << " m, error against FEM "
@@ -215,7 +215,7 @@ TEST_CASE("order 2 in 3-D with k-nearest families: exact for quadratics, force =
       "boundary:\n  - {region: bottom, fix: [x, y, z]}\n";
   Problem p = build_problem(parse_scene(scene, "cube"));
   const PointCloud& c = p.cloud;
-  const std::size_t n = p.model->dofs();
+  const std::size_t n = p.as<CorrespondenceModel>().dofs();
   // u_a = x^T Q_a x / 2: grad u is Q_a x, exact for the second-order fit.
   std::vector<double> u(n), H(c.size() * 9);
   const double Q[3][3][3] = {{{0.5, 0.1, 0}, {0.1, -0.2, 0.3}, {0, 0.3, 0.4}},
@@ -228,7 +228,7 @@ TEST_CASE("order 2 in 3-D with k-nearest families: exact for quadratics, force =
         for (int e = 0; e < 3; ++e) v += 0.5 * c.x[3 * i + b] * Q[a][b][e] * c.x[3 * i + e];
       u[3 * i + a] = v;
     }
-  p.model->gradient(u.data(), H.data());
+  p.as<CorrespondenceModel>().gradient(u.data(), H.data());
   double err = 0.0;
   for (std::size_t i = 0; i < c.size(); ++i)
     for (int a = 0; a < 3; ++a)
@@ -240,12 +240,12 @@ TEST_CASE("order 2 in 3-D with k-nearest families: exact for quadratics, force =
   CHECK(err < 1e-11);
   const std::vector<double> w = test::random_field(n, 1e-5, 5);
   std::vector<double> f(n);
-  p.model->internal_force(w.data(), f.data());
+  p.as<CorrespondenceModel>().internal_force(w.data(), f.data());
   const double fmax = test::max_abs(f), h = 1e-9;
   for (const std::size_t k : {std::size_t(1), n / 3, n - 2}) {
     std::vector<double> up = w, um = w;
     up[k] += h, um[k] -= h;
-    const double fd = (p.model->energy(up.data()) - p.model->energy(um.data())) / (2 * h);
+    const double fd = (p.as<CorrespondenceModel>().energy(up.data()) - p.as<CorrespondenceModel>().energy(um.data())) / (2 * h);
     INFO("dof " << k);
     CHECK(std::abs(fd - f[k]) <= 1e-6 * fmax);
   }

@@ -65,7 +65,7 @@ Errors patch_errors(const Variant& v, const std::string& formulation, double jit
                     const char* at = "layer", int order = 1) {
   Problem p = build_problem(parse_scene(scene(v, formulation, jitter, at, order), "patch"));
   const int d = v.dim;
-  const LinearElastic& mat = p.model->material();
+  const LinearElastic& mat = p.as<CorrespondenceModel>().material();
   // Uniform normal strains from sigma = lambda tr(eps) I + 2 mu eps.
   Eigen::MatrixXd A = Eigen::MatrixXd::Constant(d, d, mat.lambda());
   A.diagonal().array() += 2.0 * mat.mu();
@@ -74,18 +74,18 @@ Errors patch_errors(const Variant& v, const std::string& formulation, double jit
   eps = A.lu().solve(sigma);
   // Zero displacement at the rollers' layer, or at the box faces: u_a = eps_a (x_a - x0).
   const double x0 = std::string(at) == "face" ? 0.0 : 0.5e-3;
-  std::vector<double> exact(p.model->dofs());
+  std::vector<double> exact(p.as<CorrespondenceModel>().dofs());
   for (std::size_t i = 0; i < p.cloud.size(); ++i)
     for (int a = 0; a < d; ++a) exact[i * d + a] = eps[a] * (p.cloud.x[i * d + a] - x0);
   // On a jittered cloud the rollers prescribe the exact field (on the particle, or at the face).
   if (jitter > 0.0)
     for (std::size_t k = 0; k < p.loading.fixed.size(); ++k)
       p.loading.value[k] = std::string(at) == "face" ? 0.0 : exact[p.loading.fixed[k]];
-  const auto u = test::direct_solve(*p.model, p.loading);
+  const auto u = test::direct_solve(p.as<CorrespondenceModel>(), p.loading);
   double du = 0.0;
   for (std::size_t k = 0; k < u.size(); ++k) du = std::max(du, std::abs(u[k] - exact[k]));
   std::vector<double> s3;
-  p.model->stress3(u.data(), s3);
+  p.as<CorrespondenceModel>().stress3(u.data(), s3);
   double ds = 0.0;
   for (std::size_t i = 0; i < p.cloud.size(); ++i)
     for (int a = 0; a < d; ++a)
@@ -135,12 +135,12 @@ TEST_CASE("face-located rollers are exact too, with the direct solve and with AD
   }
   // ADR re-imposes the coupled constraints every iteration and reaches the same answer.
   Problem p = build_problem(parse_scene(scene(variants[0], "improved", 0.0, "face"), "patch"));
-  const auto ref = test::direct_solve(*p.model, p.loading);
+  const auto ref = test::direct_solve(p.as<CorrespondenceModel>(), p.loading);
   std::vector<double> u;
   AdrOptions opt;
   opt.tolerance = 1e-11;
   opt.displacement_tolerance = 1e-13;
-  REQUIRE(solve_adr(*p.model, p.loading, opt, u).converged);
+  REQUIRE(solve_adr(p.as<CorrespondenceModel>(), p.loading, opt, u).converged);
   double err = 0.0;
   for (std::size_t k = 0; k < u.size(); ++k) err = std::max(err, std::abs(u[k] - ref[k]));
   CHECK(err <= 1e-8 * test::max_abs(ref));

@@ -134,13 +134,12 @@ bool lists(const Model& m, const std::string& what) {
 
 TEST_CASE("a plate scene builds no elasticity operators and an elasticity scene no Hessian", "[models][plate][cli]") {
   const Problem plate = example("thin_plate_clamped.yaml");
-  CHECK(plate.model == nullptr);
-  REQUIRE(plate.plate != nullptr);
-  CHECK(lists(*plate.plate, "second-order operator"));
-  CHECK_FALSE(lists(*plate.plate, "gradient operator G"));
+  REQUIRE(dynamic_cast<const ThinPlateModel*>(plate.model.get()) != nullptr);
+  CHECK(lists(plate.as<ThinPlateModel>(), "second-order operator"));
+  CHECK_FALSE(lists(plate.as<ThinPlateModel>(), "gradient operator G"));
   const Problem solid = example("uniaxial_compression.yaml");
-  CHECK(solid.plate == nullptr);
-  REQUIRE(solid.model != nullptr);
+  CHECK(dynamic_cast<const ThinPlateModel*>(solid.model.get()) == nullptr);
+  REQUIRE(dynamic_cast<const CorrespondenceModel*>(solid.model.get()) != nullptr);
   // The demo runs the consistent formulation with the second-order fit's gradient: G and the
   // second-order stabilization, but no Hessian is kept.
   CHECK(lists(*solid.model, "gradient G"));

@@ -65,15 +65,15 @@ std::pair<double, double> corner_errors(int dim, const std::string& formulation)
   std::vector<double> u(p.cloud.size() * d);
   for (std::size_t i = 0; i < p.cloud.size(); ++i) quadratic(p.cloud.point(i), d, u.data() + i * d, nullptr);
   std::vector<double> sigma, H(p.cloud.size() * d * d);
-  p.model->stress3(u.data(), sigma);
-  p.model->gradient(u.data(), H.data());
-  const std::vector<double> grad_sigma = stress_gradient(*p.model, sigma);
+  p.as<CorrespondenceModel>().stress3(u.data(), sigma);
+  p.as<CorrespondenceModel>().gradient(u.data(), H.data());
+  const std::vector<double> grad_sigma = stress_gradient(p.as<CorrespondenceModel>(), sigma);
   const ProbeFields with{p.cloud, u, sigma, H, nullptr, &grad_sigma};
   // The analytic stress at the probes' point.
   const double y[3] = {0.0, 0.0, 0.0};
   double Hy[9], exact[9];
   quadratic(y, d, nullptr, Hy);
-  p.model->material().stress3(Hy, exact);
+  p.as<CorrespondenceModel>().material().stress3(Hy, exact);
   double scale = 0.0;
   for (const double s : exact) scale = std::max(scale, std::abs(s));
   double err = 0.0, err_plain = 0.0;

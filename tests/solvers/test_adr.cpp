@@ -25,9 +25,9 @@ TEST_CASE("ADR converges on a small bar to the direct solution and near the anal
   AdrOptions opt;
   opt.tolerance = 1e-10;
   opt.displacement_tolerance = 1e-12;
-  const SolveReport rep = solve_adr(*p.model, p.loading, opt, u);
+  const SolveReport rep = solve_adr(p.as<CorrespondenceModel>(), p.loading, opt, u);
   REQUIRE(rep.converged);
-  const auto ref = test::direct_solve(*p.model, p.loading);
+  const auto ref = test::direct_solve(p.as<CorrespondenceModel>(), p.loading);
   double err = 0.0;
   for (std::size_t k = 0; k < u.size(); ++k) err = std::max(err, std::abs(u[k] - ref[k]));
   CHECK(err <= 1e-7 * test::max_abs(ref));
@@ -44,7 +44,7 @@ TEST_CASE("ADR stops cleanly on NaN, says why and keeps a finite state", "[solve
   Problem p = build_problem(parse_scene(bar, "bar"));
   p.loading.force[10] = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> u;
-  const SolveReport rep = solve_adr(*p.model, p.loading, AdrOptions{}, u);
+  const SolveReport rep = solve_adr(p.as<CorrespondenceModel>(), p.loading, AdrOptions{}, u);
   CHECK_FALSE(rep.converged);
   CHECK_THAT(rep.failure, Catch::Contains("NaN"));
   for (double x : u) REQUIRE(std::isfinite(x));

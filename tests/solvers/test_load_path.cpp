@@ -28,7 +28,7 @@ SolveReport solve(Problem& p, std::vector<double>& u) {
   LoadPathOptions o;
   parse_load_path_scheme(p.scene.solver.type, o.scheme);
   o.adr.tolerance = o.adr.displacement_tolerance = 1e-10;
-  return solve_load_path(*p.model, p.stages, o, u);
+  return solve_load_path(p.as<CorrespondenceModel>(), p.stages, o, u);
 }
 
 /// max |a - b| and max |b|.
@@ -46,7 +46,7 @@ std::pair<double, double> max_difference(const std::vector<double>& a, const std
 Problem plastic_state(std::vector<double>& u, const std::vector<std::string>& more) {
   Problem p = biaxial(5, "lbc", more);
   REQUIRE(solve(p, u).converged);
-  p.model->plastic()->set_mode(PlasticMode::return_map);
+  p.as<CorrespondenceModel>().plastic()->set_mode(PlasticMode::return_map);
   return p;
 }
 
@@ -129,8 +129,8 @@ TEST_CASE("LBC and Newton reproduce the material point on the biaxial test, unif
       REQUIRE(rep.converged);
       REQUIRE(rep.history.rows() == std::size_t(2 * steps));
       std::vector<double> sigma;
-      p.model->stress3(u.data(), sigma);
-      const auto& pp = *p.model->plastic();
+      p.as<CorrespondenceModel>().stress3(u.data(), sigma);
+      const auto& pp = *p.as<CorrespondenceModel>().plastic();
       // Every particle at the material point's state: no surface effect, no false yielding.
       for (std::size_t i = 0; i < p.cloud.size(); ++i) {
         CHECK(von_mises(sigma.data() + i * 9) == Approx(vm_mp).epsilon(1e-6));
@@ -171,7 +171,7 @@ TEST_CASE("the plastic model's tangent is the derivative of its force, for eithe
     // A plastic state from five LBC steps (all particles yielded), then a random direction.
     std::vector<double> u;
     Problem p = plastic_state(u, {"model.operator_order=" + std::to_string(order)});
-    CorrespondenceModel& m = *p.model;
+    CorrespondenceModel& m = p.as<CorrespondenceModel>();
     // Evaluate at u + a small plastic increment, so the return map is active and smooth.
     for (auto& v : u) v *= 1.001;
     std::vector<double> Kdu;
@@ -190,7 +190,7 @@ TEST_CASE("a stage starts where the previous one ended", "[load_path]") {
   std::vector<double> top_after_stage1;
   LoadPathOptions o;
   o.adr.tolerance = o.adr.displacement_tolerance = 1e-11;
-  const auto rep = solve_load_path(*p.model, p.stages, o, u, nullptr,
+  const auto rep = solve_load_path(p.as<CorrespondenceModel>(), p.stages, o, u, nullptr,
                                    [&](const LoadStepRecord& r, const std::vector<double>& v) {
                                      if (r.stage == 1 && r.step == 2) top_after_stage1 = v;
                                    });
@@ -206,7 +206,7 @@ TEST_CASE("a stage starts where the previous one ended", "[load_path]") {
       ++top_checked;
     }
   CHECK(top_checked > 0);
-  CHECK(p.model->plastic()->flagged() == 0);
+  CHECK(p.as<CorrespondenceModel>().plastic()->flagged() == 0);
 }
 
 TEST_CASE("plain ADR yields falsely where LBC does not", "[load_path]") {
@@ -224,7 +224,7 @@ TEST_CASE("plain ADR yields falsely where LBC does not", "[load_path]") {
     REQUIRE(rep.converged);
     plastic[k] = std::size_t(rep.history.at(rep.history.rows() - 1, 7));
     std::vector<double> sigma;
-    p.model->stress3(u.data(), sigma);
+    p.as<CorrespondenceModel>().stress3(u.data(), sigma);
     vm[k++] = von_mises(sigma.data());
   }
   CHECK(plastic[0] == 0);
@@ -246,10 +246,10 @@ TEST_CASE("finite rotation: a rigid rotation of a plastic state rotates its stre
     Problem p = biaxial(5, "lbc", {std::string("model.kinematics=") + kinematics});
     std::vector<double> u;
     REQUIRE(solve(p, u).converged);
-    REQUIRE(p.model->plastic()->committed()[0].law.xi > 0.0);
+    REQUIRE(p.as<CorrespondenceModel>().plastic()->committed()[0].law.xi > 0.0);
     std::vector<double> before, after;
-    p.model->stress3(u.data(), before);
-    p.model->stress3(turned(p.cloud, u, M_PI / 6).data(), after);
+    p.as<CorrespondenceModel>().stress3(u.data(), before);
+    p.as<CorrespondenceModel>().stress3(turned(p.cloud, u, M_PI / 6).data(), after);
     const double R[3][3] = {{c, -s, 0}, {s, c, 0}, {0, 0, 1}};
     for (std::size_t i = 0; i < p.cloud.size(); ++i) {
       const double* b = before.data() + 9 * i;
@@ -276,7 +276,7 @@ TEST_CASE("finite rotation: the closed-form tangent is the derivative of the for
   // assembled rows (polar rotations' derivatives included) against central differences.
   std::vector<double> u, Kdu;
   Problem p = plastic_state(u, {"model.kinematics=finite_rotation", "material.h=50"});
-  const auto [err, ref] = tangent_error(*p.model, turned(p.cloud, u, M_PI / 6, 1.001), probe_direction(u.size()), Kdu);
+  const auto [err, ref] = tangent_error(p.as<CorrespondenceModel>(), turned(p.cloud, u, M_PI / 6, 1.001), probe_direction(u.size()), Kdu);
   INFO("max |K du - FD| = " << err << " of " << ref);
   CHECK(err < 1e-6 * ref);
   CHECK(ref > 0.0);
@@ -311,7 +311,7 @@ solver: {type: lbc}
   Problem p = build_problem(read_scene(path));
   std::vector<double> u;
   REQUIRE(solve(p, u).converged);
-  CorrespondenceModel& m = *p.model;
+  CorrespondenceModel& m = p.as<CorrespondenceModel>();
   double xi = 0.0;
   for (const auto& point : m.plastic()->committed()) xi = std::max(xi, point.law.xi);
   REQUIRE(xi > 0.0);
@@ -346,7 +346,7 @@ TEST_CASE("finite rotation agrees with small strain at small strains", "[load_pa
                                    "stages.1.boundary.1.displacement.y=-1e-7"});
     std::vector<double> u;
     REQUIRE(solve(p, u).converged);
-    p.model->stress3(u.data(), sigma[k++]);
+    p.as<CorrespondenceModel>().stress3(u.data(), sigma[k++]);
   }
   const auto [diff, scale] = max_difference(sigma[0], sigma[1]);
   INFO("max difference " << diff << " of " << scale);
@@ -365,7 +365,7 @@ TEST_CASE("finite rotation: LBC and Newton agree", "[load_path]") {
     REQUIRE(rep.converged);
     // Newton converges: a few iterations per plastic step, not the iteration limit.
     if (solver == "newton") CHECK(rep.iterations < 10 * 10);
-    p.model->stress3(u.data(), sigma[k++]);
+    p.as<CorrespondenceModel>().stress3(u.data(), sigma[k++]);
   }
   const auto [diff, scale] = max_difference(sigma[0], sigma[1]);
   INFO("max difference " << diff << " of " << scale);
@@ -384,7 +384,7 @@ TEST_CASE("follower pressures: the Cauchy stress on the pressed side is the pres
                                       std::string("model.follower_pressure=") + follower});
       std::vector<double> u, sigma;
       REQUIRE(solve(p, u).converged);
-      p.model->stress3(u.data(), sigma);
+      p.as<CorrespondenceModel>().stress3(u.data(), sigma);
       for (std::size_t i = 0; i < p.cloud.size(); ++i)
         worst[k] = std::max(worst[k], std::abs(sigma[9 * i] + 600e3) / 600e3);
       ++k;
@@ -402,7 +402,7 @@ TEST_CASE("follower pressures: the tangent is the derivative of the force", "[lo
   // the error.
   std::vector<double> u;
   Problem p = plastic_state(u, {"model.kinematics=finite_rotation", "material.h=50"});
-  CorrespondenceModel& m = *p.model;
+  CorrespondenceModel& m = p.as<CorrespondenceModel>();
   m.follow_loads(p.stages.back().loading, 1.0);
   // At u + a small plastic increment, so the return map is active and smooth.
   for (auto& v : u) v *= 1.001;

@@ -57,7 +57,7 @@ TEST_CASE("the assembled Jacobian is the derivative of the residual", "[solvers]
   for (const auto& scene : scenes) {
     {
       Problem p = build_problem(parse_scene(scene, "scene"));
-      StaticSystem system(*p.model, p.loading);
+      StaticSystem system(p.as<CorrespondenceModel>(), p.loading);
       system.assemble(nullptr);
       const CsrMatrix& J = system.jacobian();
       const auto u = test::random_field(system.dofs(), 1e-4, 1);
@@ -86,12 +86,12 @@ TEST_CASE("Newton converges in one iteration on a linear problem, to the direct 
       std::vector<double> u;
       NewtonOptions opt;
       opt.line_search = false;
-      const SolveReport rep = solve_newton(*p.model, p.loading, opt, u);
+      const SolveReport rep = solve_newton(p.as<CorrespondenceModel>(), p.loading, opt, u);
       INFO(form << ", " << at << ": " << rep.failure);
       REQUIRE(rep.converged);
       CHECK(rep.iterations == 1);
       CHECK(rep.residual < 1e-10);
-      CHECK(relative_difference(u, test::direct_solve(*p.model, p.loading)) < 1e-9);
+      CHECK(relative_difference(u, test::direct_solve(p.as<CorrespondenceModel>(), p.loading)) < 1e-9);
     }
 }
 
@@ -99,9 +99,9 @@ TEST_CASE("load steps reuse the factorization and end at the same answer", "[sol
   Problem p = build_problem(parse_scene(plate("improved", "face"), "plate"));
   std::vector<double> one, four;
   NewtonOptions opt;
-  REQUIRE(solve_newton(*p.model, p.loading, opt, one).converged);
+  REQUIRE(solve_newton(p.as<CorrespondenceModel>(), p.loading, opt, one).converged);
   opt.load_steps = 4;
-  const SolveReport rep = solve_newton(*p.model, p.loading, opt, four);
+  const SolveReport rep = solve_newton(p.as<CorrespondenceModel>(), p.loading, opt, four);
   REQUIRE(rep.converged);
   CHECK(rep.history.rows() == 4);
   CHECK(rep.iterations == 4);
@@ -110,7 +110,7 @@ TEST_CASE("load steps reuse the factorization and end at the same answer", "[sol
 
 TEST_CASE("ADR and Newton agree on the demo scene at a tight ADR tolerance", "[solvers][newton]") {
   Problem p = build_problem(read_scene(PERINOM_SOURCE_DIR "/examples/uniaxial_compression.yaml"));
-  const auto r = test::adr_and_newton(*p.model, p.loading);
+  const auto r = test::adr_and_newton(p.as<CorrespondenceModel>(), p.loading);
   WARN("demo: ADR (tolerance 1e-11) and Newton differ by " << r.relative_l2 << " (relative L2)");
   CHECK(r.relative_l2 < 1e-6);
 }
@@ -118,7 +118,7 @@ TEST_CASE("ADR and Newton agree on the demo scene at a tight ADR tolerance", "[s
 TEST_CASE("a body free to move rigidly is reported as a missing boundary condition", "[solvers][newton]") {
   Problem p = build_problem(parse_scene(plate("improved", "layer", false), "plate"));
   std::vector<double> u;
-  CHECK_THROWS_WITH(solve_newton(*p.model, p.loading, NewtonOptions{}, u),
+  CHECK_THROWS_WITH(solve_newton(p.as<CorrespondenceModel>(), p.loading, NewtonOptions{}, u),
                     Catch::Contains("singular") && Catch::Contains("boundary condition is probably missing"));
 }
 
@@ -136,7 +136,7 @@ TEST_CASE("the assembled plate Jacobian is the finite-difference derivative of t
           "[solvers][newton][plate]") {
   for (const char* support : {"simply_supported", "clamped"}) {
     Problem p = plate_21(support);
-    REQUIRE(p.plate != nullptr);
+    REQUIRE(dynamic_cast<const ThinPlateModel*>(p.model.get()) != nullptr);
     StaticSystem system(p.physics(), p.loading);
     system.assemble(nullptr);
     const CsrMatrix& J = system.jacobian();

@@ -109,21 +109,21 @@ TEST_CASE("ADR and Verlet iterations allocate nothing", "[solvers]") {
     adr.tolerance = 0.0;  // run every iteration
     adr.max_iterations = 120;
     LoopCounter c{5, 120};
-    const SolveReport rep = solve_adr(*p.model, p.loading, adr, u, nullptr, c.observer());
+    const SolveReport rep = solve_adr(p.as<CorrespondenceModel>(), p.loading, adr, u, nullptr, c.observer());
     INFO(variant);
     REQUIRE(rep.iterations == 120);
     REQUIRE(c.at_from >= 0);
     CHECK(c.at_to - c.at_from == 0);
 
     std::vector<double> v;
-    u.assign(p.model->dofs(), 0.0);
+    u.assign(p.as<CorrespondenceModel>().dofs(), 0.0);
     VerletOptions verlet;
     verlet.steps = 120;
     // The improved formulation gains energy in Verlet (issue 14) and its guard would stop the
     // run before step 120; this test counts allocations, not energy.
     verlet.energy_check = false;
     LoopCounter c2{5, 120};
-    solve_verlet(*p.model, p.loading, verlet, u, v, nullptr, c2.observer());
+    solve_verlet(p.as<CorrespondenceModel>(), p.loading, verlet, u, v, nullptr, c2.observer());
     REQUIRE(c2.at_from >= 0);
     CHECK(c2.at_to - c2.at_from == 0);
   }

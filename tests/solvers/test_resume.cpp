@@ -49,18 +49,18 @@ TEST_CASE("ADR resumed from a state taken part-way ends bit for bit as the unint
   AdrOptions opt;
   opt.tolerance = 1e-8, opt.load_steps = 2, opt.history_every = 7;
   std::vector<double> u;
-  const SolveReport whole = solve_adr(*p.model, p.loading, opt, u);
+  const SolveReport whole = solve_adr(p.as<CorrespondenceModel>(), p.loading, opt, u);
   REQUIRE(whole.converged);
   std::vector<AdrState> states;
   std::vector<double> u_ck;
-  const SolveReport checkpointed = solve_adr(*p.model, p.loading, opt, u_ck, nullptr, {}, keep_all(states, 150));
+  const SolveReport checkpointed = solve_adr(p.as<CorrespondenceModel>(), p.loading, opt, u_ck, nullptr, {}, keep_all(states, 150));
   CHECK(same_bits(u_ck, u));  // handing out the state changes nothing
   REQUIRE(states.size() >= 4);
   // One state in the first load step, one in the second.
   for (const AdrState* s : {&states[1], &states[states.size() - 2]}) {
     INFO("resumed at iteration " << s->iterations << ", load step " << s->load_step);
     std::vector<double> u_resumed;
-    const SolveReport resumed = solve_adr(*p.model, p.loading, opt, u_resumed, nullptr, {}, {}, s);
+    const SolveReport resumed = solve_adr(p.as<CorrespondenceModel>(), p.loading, opt, u_resumed, nullptr, {}, {}, s);
     CHECK(resumed.converged);
     CHECK(same_bits(u_resumed, u));
     CHECK(resumed.iterations == whole.iterations);
@@ -75,7 +75,7 @@ TEST_CASE("ADR resumed from a state taken part-way ends bit for bit as the unint
   *std::max_element(nudged.v.begin(), nudged.v.end(), [](double a, double b) { return std::abs(a) < std::abs(b); }) *=
       1.0 + 1e-6;
   std::vector<double> u_nudged;
-  REQUIRE(solve_adr(*p.model, p.loading, opt, u_nudged, nullptr, {}, {}, &nudged).converged);
+  REQUIRE(solve_adr(p.as<CorrespondenceModel>(), p.loading, opt, u_nudged, nullptr, {}, {}, &nudged).converged);
   CHECK_FALSE(same_bits(u_nudged, u));
 }
 
@@ -87,20 +87,20 @@ TEST_CASE("Verlet resumed from a state taken part-way ends bit for bit as the un
   Problem p = build_problem(parse_scene(cli_test::with(bar, "traction: [1.0e6, 0]", right), "bar"));
   REQUIRE(p.loading.galerkin() == (right.find("face") != std::string::npos));
   VerletOptions opt;
-  opt.steps = 300, opt.history_every = 7, opt.ramp_time = 100 * 0.8 * stable_time_step(*p.model);
+  opt.steps = 300, opt.history_every = 7, opt.ramp_time = 100 * 0.8 * stable_time_step(p.as<CorrespondenceModel>());
   std::vector<double> u, v;
-  const SolveReport whole = solve_verlet(*p.model, p.loading, opt, u, v);
+  const SolveReport whole = solve_verlet(p.as<CorrespondenceModel>(), p.loading, opt, u, v);
   REQUIRE(whole.converged);
   std::vector<VerletState> states;
   std::vector<double> u_ck, v_ck;
-  solve_verlet(*p.model, p.loading, opt, u_ck, v_ck, nullptr, {}, keep_all(states, 90));
+  solve_verlet(p.as<CorrespondenceModel>(), p.loading, opt, u_ck, v_ck, nullptr, {}, keep_all(states, 90));
   CHECK(same_bits(u_ck, u));
   REQUIRE(states.size() == 3);
   CHECK(states[0].multipliers.size() == (p.loading.galerkin() ? p.loading.fixed.size() : 0));
   for (const VerletState& s : states) {  // during the ramp (90) and after it (180, 270)
     INFO("resumed at step " << s.step);
     std::vector<double> u_resumed, v_resumed;
-    const SolveReport resumed = solve_verlet(*p.model, p.loading, opt, u_resumed, v_resumed, nullptr, {}, {}, &s);
+    const SolveReport resumed = solve_verlet(p.as<CorrespondenceModel>(), p.loading, opt, u_resumed, v_resumed, nullptr, {}, {}, &s);
     CHECK(resumed.converged);
     CHECK(same_bits(u_resumed, u));
     CHECK(same_bits(v_resumed, v));
@@ -110,7 +110,7 @@ TEST_CASE("Verlet resumed from a state taken part-way ends bit for bit as the un
   VerletState nudged = states[0];
   nudged.work = std::nextafter(nudged.work, 1.0);  // only the history's work column sees it
   std::vector<double> u_nudged, v_nudged;
-  const SolveReport off = solve_verlet(*p.model, p.loading, opt, u_nudged, v_nudged, nullptr, {}, {}, &nudged);
+  const SolveReport off = solve_verlet(p.as<CorrespondenceModel>(), p.loading, opt, u_nudged, v_nudged, nullptr, {}, {}, &nudged);
   CHECK(same_bits(u_nudged, u));
   CHECK_FALSE(same_bits(off.history.values, whole.history.values));
 }
@@ -125,15 +125,15 @@ TEST_CASE("a load path resumed after a committed step ends bit for bit as the un
   INFO((opt.scheme == LoadPathScheme::lbc ? "LBC" : "plain ADR, the return map committed every iteration"));
   Problem whole_p = build();
   std::vector<double> u;
-  const SolveReport whole = solve_load_path(*whole_p.model, whole_p.stages, opt, u);
+  const SolveReport whole = solve_load_path(whole_p.as<CorrespondenceModel>(), whole_p.stages, opt, u);
   REQUIRE(whole.converged);
-  const auto& plastic = whole_p.model->plastic()->committed();
+  const auto& plastic = whole_p.as<CorrespondenceModel>().plastic()->committed();
   REQUIRE(plastic[0].law.xi > 0.0);
   std::vector<LoadPathState> states;
   {
     Problem p = build();
     std::vector<double> u_ck;
-    solve_load_path(*p.model, p.stages, opt, u_ck, nullptr, {}, keep_all(states, 1));
+    solve_load_path(p.as<CorrespondenceModel>(), p.stages, opt, u_ck, nullptr, {}, keep_all(states, 1));
     CHECK(same_bits(u_ck, u));
   }
   REQUIRE(states.size() == 6);
@@ -142,21 +142,21 @@ TEST_CASE("a load path resumed after a committed step ends bit for bit as the un
     INFO("resumed after load step " << s->step << " of stage " << s->stage + 1);
     Problem p = build();
     std::vector<double> u_resumed;
-    const SolveReport resumed = solve_load_path(*p.model, p.stages, opt, u_resumed, nullptr, {}, {}, s);
+    const SolveReport resumed = solve_load_path(p.as<CorrespondenceModel>(), p.stages, opt, u_resumed, nullptr, {}, {}, s);
     CHECK(resumed.converged);
     CHECK(same_bits(u_resumed, u));
     CHECK(resumed.iterations == whole.iterations);
     CHECK(same_bits(without_seconds(resumed.history), without_seconds(whole.history)));
-    const auto& resumed_plastic = p.model->plastic()->committed();
+    const auto& resumed_plastic = p.as<CorrespondenceModel>().plastic()->committed();
     REQUIRE(resumed_plastic.size() == plastic.size());
     CHECK(std::memcmp(resumed_plastic.data(), plastic.data(), plastic.size() * sizeof(plastic[0])) == 0);
-    CHECK(p.model->plastic()->flags() == whole_p.model->plastic()->flags());
+    CHECK(p.as<CorrespondenceModel>().plastic()->flags() == whole_p.as<CorrespondenceModel>().plastic()->flags());
   }
   // The plastic history is part of the state: without it the path ends elsewhere.
   LoadPathState virgin = states[3];
-  for (auto& point : virgin.plastic) point = PlasticPoints::Point{};
+  std::fill(virgin.plastic.begin(), virgin.plastic.end(), 0.0);
   Problem p = build();
   std::vector<double> u_virgin;
-  solve_load_path(*p.model, p.stages, opt, u_virgin, nullptr, {}, {}, &virgin);
+  solve_load_path(p.as<CorrespondenceModel>(), p.stages, opt, u_virgin, nullptr, {}, {}, &virgin);
   CHECK_FALSE(same_bits(u_virgin, u));
 }

@@ -31,12 +31,12 @@ Run solve_with(int threads, const Problem& p, bool governed = true) {
   AdrOptions adr;
   adr.tolerance = 1e-6;
   adr.max_iterations = 400;
-  r.adr = solve_adr(*p.model, p.loading, adr, r.u);
+  r.adr = solve_adr(p.as<CorrespondenceModel>(), p.loading, adr, r.u);
   std::vector<double> u;
   VerletOptions verlet;
   verlet.steps = 200;
   verlet.energy_check = false;  // the improved formulation gains energy (issue 14): run all 200 steps
-  r.verlet = solve_verlet(*p.model, p.loading, verlet, u, r.v);
+  r.verlet = solve_verlet(p.as<CorrespondenceModel>(), p.loading, verlet, u, r.v);
   omp_set_num_threads(before);
   unsetenv("PERINOM_THREAD_GOVERNOR");
   return r;

@@ -106,7 +106,7 @@ TEST_CASE("Verlet's external work counts the work of moving supports, so their e
     VerletOptions opt;
     opt.steps = 3000;
     opt.ramp_time = 2.0e-5;
-    const SolveReport rep = solve_verlet(*p.model, p.loading, opt, u, v);
+    const SolveReport rep = solve_verlet(p.as<CorrespondenceModel>(), p.loading, opt, u, v);
     INFO("support at the " << at << ": " << rep.failure);
     REQUIRE(rep.failure.empty());
     const History& h = rep.history;

@@ -15,10 +15,10 @@ namespace {
 double tip(const char* scene, const std::vector<std::string>& sets) {
   Problem p = build_problem(read_scene(std::string(PERINOM_SOURCE_DIR "/verification/formulation/") + scene, sets));
   std::vector<double> u;
-  REQUIRE(solve_newton(*p.model, p.loading, NewtonOptions{}, u).converged);
+  REQUIRE(solve_newton(p.as<CorrespondenceModel>(), p.loading, NewtonOptions{}, u).converged);
   std::vector<double> sigma, H(u.size() * p.cloud.dim);
-  p.model->stress3(u.data(), sigma);
-  p.model->gradient(u.data(), H.data());
+  p.as<CorrespondenceModel>().stress3(u.data(), sigma);
+  p.as<CorrespondenceModel>().gradient(u.data(), H.data());
   return point_probe_value(p.probes.at(0), {p.cloud, u, sigma, H});
 }
 

@@ -17,12 +17,12 @@ TEST_CASE("the Lame cylinder's radial displacement (1%) and hoop stress (3%) at 
   const auto ur = [&](double r) {
     return (1 + nu) * a * a * pressure / (E * (b * b - a * a)) * ((1 - 2 * nu) * r + b * b / r);
   };
-  const auto u = test::direct_solve(*p.model, p.loading);
+  const auto u = test::direct_solve(p.as<CorrespondenceModel>(), p.loading);
   std::vector<double> sigma, H(u.size() * 2);
-  p.model->stress3(u.data(), sigma);
-  p.model->gradient(u.data(), H.data());
+  p.as<CorrespondenceModel>().stress3(u.data(), sigma);
+  p.as<CorrespondenceModel>().gradient(u.data(), H.data());
   // At the inner surface, through the probes' reconstruction: on the x axis, and at 45 degrees.
-  const std::vector<double> grad_sigma = stress_gradient(*p.model, sigma);
+  const std::vector<double> grad_sigma = stress_gradient(p.as<CorrespondenceModel>(), sigma);
   const ProbeFields fields{p.cloud, u, sigma, H, nullptr, &grad_sigma};
   const double at_0 = point_probe_value(p.probes.at(0), fields);
   const double at_45 = (point_probe_value(p.probes.at(1), fields) + point_probe_value(p.probes.at(2), fields)) / std::sqrt(2.0);

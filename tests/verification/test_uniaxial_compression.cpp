@@ -14,10 +14,10 @@ TEST_CASE("the demo plate's top-centre displacement is within 5% of plane-strain
   opt.tolerance = scene.solver.tolerance;
   opt.displacement_tolerance = scene.solver.displacement_tolerance;
   std::vector<double> u;
-  REQUIRE(solve_adr(*p.model, p.loading, opt, u).converged);
+  REQUIRE(solve_adr(p.as<CorrespondenceModel>(), p.loading, opt, u).converged);
   std::vector<double> sigma, H(u.size() * 2);
-  p.model->stress3(u.data(), sigma);
-  p.model->gradient(u.data(), H.data());
+  p.as<CorrespondenceModel>().stress3(u.data(), sigma);
+  p.as<CorrespondenceModel>().gradient(u.data(), H.data());
   const double uy = point_probe_value(p.probes.at(0), {p.cloud, u, sigma, H}), fem = -0.4466475e-3;
   WARN("top_center_uy = " << uy << " m, FEM " << fem << " m, error " << (uy - fem) / -fem * 100 << "%");
   CHECK(std::abs(uy - fem) <= 0.05 * std::abs(fem));

@@ -24,6 +24,7 @@
 #include "perinom/geometry/surface.hpp"
 #include "perinom/materials/linear_elastic.hpp"
 #include "perinom/models/follower_pressure.hpp"
+#include "perinom/models/model_history.hpp"
 #include "perinom/models/tangent_model.hpp"
 #include "perinom/models/plastic_points.hpp"
 #include "perinom/neighbors/families.hpp"
@@ -75,7 +76,7 @@ struct CorrespondenceOptions {
   bool follower_pressure = false;
 };
 
-class CorrespondenceModel : public TangentModel {
+class CorrespondenceModel : public TangentModel, public ModelHistory {
  public:
   /// Assembles G (and S when C_hg > 0) once. Throws InputError for a singular shape tensor
   /// (or second-order fit), or a stabilization storage the operator order cannot use.
@@ -112,7 +113,7 @@ class CorrespondenceModel : public TangentModel {
   PlasticPoints* plastic() { return plastic_ ? &*plastic_ : nullptr; }
   const PlasticPoints* plastic() const { return plastic_ ? &*plastic_ : nullptr; }
   /// Plasticity: evaluates every particle at u (by the current mode) and commits.
-  void commit(const double* u);
+  void commit(const double* u) override;
   /// Plasticity: the consistent tangents at u, used by visit_tangent_rows until the next
   /// call (the Newton path calls it before each assembly). Elastic models ignore it.
   void prepare_tangent(const double* u) override;
@@ -139,7 +140,32 @@ class CorrespondenceModel : public TangentModel {
   /// The consistent formulation: how the correction of G went.
   const ConsistencyReport& consistency() const { return consistency_; }
 
+  // What drivers and the load path ask of any model (correspondence_output.cpp): the fields
+  // displacement, stress, von_mises, mean_stress, volume; surface_stress and
+  // surface_von_mises with boundary facets; subregion_E and surface for the improved and
+  // strong formulations; eq_plastic_strain, plastic_strain and yielded with plasticity;
+  // for probes displacement_gradient and equivalent_strain, and stress_gradient.
+  ModelHistory* history() override { return plastic_ ? this : nullptr; }
+  std::vector<OutputField> output_fields(const double* u, bool probe_fields = false,
+                                         bool gradients = false) const override;
+  std::vector<double> stress_measure(const double* u) const override;
+  std::vector<PlanLine> plan() const override;
+  std::vector<std::string> not_assembled() const override;
+
+  // ModelHistory, through plastic() (meaningful with plasticity only; history() is nullptr
+  // otherwise). commit(u) is the one above.
+  void set_history_mode(HistoryMode mode) override;
+  void commit_trial() override;
+  std::size_t flag_violations(double tolerance) override;
+  std::vector<double> history_variable() const override;
+  std::size_t values_per_particle() const override;
+  HistoryState save_history() const override;
+  void restore_history(const HistoryState& state) override;
+  void reset_history() override;
+
  private:
+  double c_hg_ = 0.0;       // the stabilization coefficient asked for (for the plan)
+  std::vector<double> x_;   // the particles' positions (surface stress at the facets)
   int dim_;
   int order_;
   Formulation formulation_;

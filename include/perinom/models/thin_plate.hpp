@@ -20,6 +20,9 @@ struct ThinPlateOptions {
   double density = 0.0;    ///< rho (kg/m^3)
   Influence influence = Influence::inverse_square;
   double stabilization = 0.5;  ///< C_hg of the operator energy (second_order_stabilization.hpp); 0: none
+  /// How each edge is held (0 xmin, 1 xmax, 2 ymin, 3 ymax), as the PlateCloud's ghosts were
+  /// made; for the plan only (the ghosts and the Loading carry the conditions).
+  PlateEdges edges{EdgeSupport::free, EdgeSupport::free, EdgeSupport::free, EdgeSupport::free};
 };
 
 /// Deflection w (m), one unknown per physical node of a PlateCloud. With kappa_i = (Hess w)_i
@@ -61,6 +64,15 @@ class ThinPlateModel : public TangentModel {
   double rigidity() const { return D0_; }
   const PlateCloud& plate() const { return plate_; }
   const SecondOrderOperator& op() const { return op_; }
+
+  // What drivers ask of any model (thin_plate_output.cpp): the fields deflection (m),
+  // displacement (0, 0, w) for ParaView's Warp By Vector, curvature (1/m) and moment
+  // (N m / m) as 3 x 3 tensors (zz, xz, yz zero), volume (quadrature area times thickness).
+  std::vector<OutputField> output_fields(const double* w, bool probe_fields = false,
+                                         bool gradients = false) const override;
+  std::vector<double> stress_measure(const double* w) const override;
+  std::vector<PlanLine> plan() const override;
+  std::vector<std::string> not_assembled() const override;
 
  private:
   void extend(const double* w, std::vector<double>& ext) const;

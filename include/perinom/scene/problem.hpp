@@ -2,6 +2,8 @@
 /// @file A scene turned into what the solvers consume: particles, families, the assembled
 /// model, the loading and the resolved probes.
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "perinom/core/timer.hpp"
@@ -22,15 +24,14 @@ struct BoundProbe {
   std::vector<double> along;
 };
 
-/// The model is either a correspondence model (`model`) or a thin plate (`plate`); the other
-/// pointer is empty, so a scene builds only the operators it uses. physics() is whichever
-/// was built, for the solvers.
+/// One model slot: the model model.type names (registry.hpp builds it), used by the solvers
+/// and the drivers through TangentModel and Model alone. A feature that is truly one model's
+/// is reached by typed access, as<CorrespondenceModel>().
 struct Problem {
   Scene scene;
   PointCloud cloud;  ///< the particles the solvers, probes and snapshots see (a plate: its nodes, no ghosts)
   std::size_t bonds = 0;
-  std::unique_ptr<CorrespondenceModel> model;
-  std::unique_ptr<ThinPlateModel> plate;
+  std::unique_ptr<TangentModel> model;
   Loading loading;                 ///< the scene's `boundary` at solver.load_steps (single-stage solvers)
   std::vector<LoadStage> stages;   ///< load-path scenes (Scene::load_path): one per stage
   std::vector<BoundProbe> probes;
@@ -44,8 +45,15 @@ struct Problem {
   double mean_size = 0.0;
   double facet_defect = 0.0;
 
-  TangentModel& physics() { return plate ? static_cast<TangentModel&>(*plate) : *model; }
-  const TangentModel& physics() const { return plate ? static_cast<const TangentModel&>(*plate) : *model; }
+  TangentModel& physics() { return *model; }
+  const TangentModel& physics() const { return *model; }
+  /// The model as its concrete type; throws std::logic_error when it is another.
+  template <class M>
+  M& as() const {
+    M* m = dynamic_cast<M*>(model.get());
+    if (!m) throw std::logic_error("Problem::as: the scene's model is of another type");
+    return *m;
+  }
 };
 
 /// Binds a probe to the cloud's particles; throws InputError for a line that meets none.
@@ -56,10 +64,13 @@ std::string horizon_key(const Scene& scene);
 /// The families discretization.horizon asks for on the cloud; errors name that key.
 Families scene_families(const Scene& scene, const PointCloud& cloud);
 
-/// Builds a thin_plate scene's problem (called by build_problem).
+/// Builds a correspondence or a thin_plate scene's problem (their rows of the model
+/// registry, registry.hpp; build_problem looks the row up).
+Problem build_correspondence_problem(const Scene& scene, PhaseTimer* timer);
 Problem build_plate_problem(const Scene& scene, PhaseTimer* timer);
 
-/// Builds the problem (lattice, families, operators, loading, probes). Phases are timed
+/// Builds the problem (lattice, families, operators, loading, probes) by the model registry's
+/// row of model.type (registry.cpp). Phases are timed
 /// in `timer` when given. Throws InputError for a region that selects no particle, a
 /// singular shape tensor, or (constraints: rigid_body) loads that are not balanced.
 Problem build_problem(const Scene& scene, PhaseTimer* timer = nullptr);
@@ -74,6 +85,35 @@ struct ProbeFields {
   const PlasticPoints* plastic = nullptr;
   /// grad sigma (N x 9 x d, stress_gradient), needed by reconstructed stress probes only.
   const std::vector<double>* grad_sigma = nullptr;
+  /// The committed xi per particle when `plastic` is not given (nullptr: 0).
+  const std::vector<double>* eq_plastic_strain = nullptr;
+  /// Any other field a probe names (a plate's deflection), by name.
+  const std::vector<OutputField>* fields = nullptr;
+};
+
+/// The probes' view of a state, for any model: its output fields at u (Model::output_fields
+/// with the probe fields, and the gradients when a point probe reconstructs a stress field).
+class ProbeReadout {
+ public:
+  ProbeReadout(const Problem& p, const std::vector<double>& u);
+  /// The field of that name, or nullptr.
+  const OutputField* find(const std::string& name) const;
+  /// A scalar field's value at particle i; 0 when the model has no such field.
+  double scalar(const std::string& name, std::size_t i) const;
+  /// A point probe's value (point_probe_value), and a probe's field at particle i (probe_value).
+  double point(const BoundProbe& probe) const;
+  double at(const ProbeSpec& spec, std::size_t i) const;
+  /// A line probe's CSV: s, x, y, z, then (a model with a von Mises stress) ux, uy, uz,
+  /// von_mises and value, else the probe's field alone under its name.
+  std::vector<std::string> line_header(const ProbeSpec& spec) const;
+  std::vector<double> line_row(const BoundProbe& probe, std::size_t k) const;
+
+ private:
+  const Problem& p_;
+  const std::vector<double>& u_;
+  std::vector<OutputField> fields_;
+  std::vector<double> none_;
+  ProbeFields view_;
 };
 
 /// True for the fields computed from the stress alone (stress, von_mises, mean_stress): those

@@ -13,6 +13,10 @@
 #include "perinom/materials/drucker_prager.hpp"
 #include "perinom/materials/linear_elastic.hpp"
 #include "perinom/operators/influence.hpp"
+#include "perinom/solvers/adr.hpp"
+#include "perinom/solvers/load_path.hpp"
+#include "perinom/solvers/newton.hpp"
+#include "perinom/solvers/verlet.hpp"
 
 namespace perinom {
 
@@ -69,24 +73,27 @@ struct StageSpec {
   std::vector<BoundarySpec> boundary;
 };
 
+/// The `solver:` keys. The defaults are the solvers' options structs' own (one place); a
+/// solver whose defaults differ (newton: tolerance, max_iterations) has them in its
+/// registry row (registry.hpp), which the reader starts from.
 struct SolverSpec {
-  std::string type = "adr";  ///< adr | verlet | newton | lbc
-  double tolerance = 1e-8;
-  double displacement_tolerance = 1e-8;
-  std::int64_t max_iterations = 200000;
-  int load_steps = 1;
-  double dt = 0.0;  ///< Verlet: 0 picks the stable step times safety
-  double safety = 0.8;
-  std::int64_t steps = 1000;
-  double ramp_time = 0.0;
-  std::int64_t history_every = 10;
-  bool line_search = true;    ///< Newton
-  double step_tolerance = 1e-14;  ///< Newton: KINSOL's scaled step tolerance
+  std::string type = "adr";  ///< a registered solver: adr | verlet | newton | lbc
+  double tolerance = AdrOptions{}.tolerance;
+  double displacement_tolerance = AdrOptions{}.displacement_tolerance;
+  std::int64_t max_iterations = AdrOptions{}.max_iterations;
+  int load_steps = AdrOptions{}.load_steps;
+  double dt = VerletOptions{}.dt;  ///< Verlet: 0 picks the stable step times safety
+  double safety = VerletOptions{}.safety;
+  std::int64_t steps = VerletOptions{}.steps;
+  double ramp_time = VerletOptions{}.ramp_time;
+  std::int64_t history_every = AdrOptions{}.history_every;
+  bool line_search = NewtonOptions{}.line_search;        ///< Newton
+  double step_tolerance = NewtonOptions{}.step_tolerance;  ///< Newton: KINSOL's scaled step tolerance
   std::string check = "none"; ///< "newton": also solve with Newton and report the difference
-  double yield_tolerance = 1e-6;  ///< LBC: relative violation of the yield condition that flags
-  int max_rounds = 1000;          ///< LBC: balance-correction rounds per load step
-  bool energy_check = true;       ///< Verlet: stop when the energy balance fails (VerletOptions)
-  double energy_tolerance = 0.5;  ///< Verlet: the balance's allowed share of the largest energy or work
+  double yield_tolerance = LoadPathOptions{}.yield_tolerance;  ///< LBC: relative violation of the yield condition that flags
+  int max_rounds = LoadPathOptions{}.max_rounds;               ///< LBC: balance-correction rounds per load step
+  bool energy_check = VerletOptions{}.energy_check;          ///< Verlet: stop when the energy balance fails
+  double energy_tolerance = VerletOptions{}.energy_tolerance;  ///< Verlet: the balance's allowed share of the largest energy or work
   bool allow_unstable = false;    ///< Verlet: run the improved or strong formulation anyway
 };
 

@@ -8,8 +8,9 @@
 #include <vector>
 
 #include "perinom/core/progress.hpp"
-#include "perinom/models/correspondence.hpp"
 #include "perinom/models/loading.hpp"
+#include "perinom/models/model_history.hpp"
+#include "perinom/models/tangent_model.hpp"
 #include "perinom/solvers/adr.hpp"
 #include "perinom/solvers/newton.hpp"
 
@@ -58,14 +59,19 @@ struct LoadPathState {
   std::vector<double> u, u_prev;
   /// Loading::value0 of every stage begun, in order (where each one started).
   std::vector<std::vector<double>> stage_value0;
-  std::vector<PlasticPoints::Point> plastic;  ///< committed states (empty for an elastic model)
-  std::vector<std::uint8_t> flags;            ///< LBC's flags (empty for an elastic model)
+  /// The model's committed history (ModelHistory::save_history: values_per_particle() reals
+  /// a particle) and LBC's flags; both empty for a model without history.
+  std::vector<double> plastic;
+  std::vector<std::uint8_t> flags;
   std::vector<double> history;                ///< the history rows so far (History::values)
 };
 
 /// The load steps a state has done, counted over all stages (as output.vtk_steps counts).
 int steps_done(const LoadPathState& state, const std::vector<LoadStage>& stages);
 
+/// Runs the stages in order on any model with a tangent; a model with history
+/// (Model::history(), model_history.hpp) is evaluated by the scheme's mode and committed after
+/// every load step, LBC flagging its particles; a model without history is solved elastic.
 /// Runs the stages in order, each from where the previous ended (Loading::begin_stage).
 /// after_step (if set) sees every committed step. report.history has one row per load step
 /// (the LoadStepRecord fields); report.iterations counts all ADR or Newton iterations.
@@ -74,7 +80,7 @@ int steps_done(const LoadPathState& state, const std::vector<LoadStage>& stages)
 /// stages, after after_step); with `resume` (such a state) the path continues from it, and
 /// ends with the u, plastic states, report and history the uninterrupted one would. The
 /// Newton scheme takes neither (KINSOL's state is not kept): std::invalid_argument.
-SolveReport solve_load_path(CorrespondenceModel& model, std::vector<LoadStage>& stages,
+SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
                             const LoadPathOptions& options, std::vector<double>& u,
                             Progress* progress = nullptr,
                             const std::function<void(const LoadStepRecord&, const std::vector<double>&)>&

@@ -24,7 +24,7 @@ namespace perinom {
 
 struct SpectrumOptions {
   /// A reduced stiffness symmetric to symmetric_tolerance (relative, Frobenius) is checked by
-  /// its inertia (solvers/inertia.hpp: sparse, any size) instead of the dense solve.
+  /// its inertia (sparse, any size; lib/solvers/inertia.hpp) instead of the dense solve.
   bool sparse_when_symmetric = true;
   double symmetric_tolerance = 1e-12;
   /// The largest number of free dofs the dense solve (non-symmetric stiffness) accepts: memory 8 n^2 bytes per dense

@@ -1,0 +1,227 @@
+// What the drivers and the load path ask of a correspondence model through Model and
+// ModelHistory: its output fields, its stress measure, its lines of the plan, and its
+// plastic history (through plastic()).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "perinom/models/correspondence.hpp"
+
+namespace perinom {
+namespace {
+
+const char* formulation_name(Formulation f) {
+  switch (f) {
+    case Formulation::classical: return "classical";
+    case Formulation::improved: return "improved";
+    case Formulation::strong: return "strong";
+    case Formulation::consistent: return "consistent";
+  }
+  return "";
+}
+
+std::string format(const char* fmt, double a) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, a);
+  return buf;
+}
+
+constexpr std::size_t kPointReals = 28;  // a plastic point: sigma (9), eps_p (9), xi, eps (9)
+
+/// The equivalent strain sqrt(2/3 e : e) of grad u (d x d): e the deviator of the 3 x 3 small
+/// strain (plane strain in 2-D).
+double equivalent_strain_of(const double* H, int d) {
+  double eps[9] = {};
+  for (int a = 0; a < d; ++a)
+    for (int b = 0; b < d; ++b) eps[a * 3 + b] = 0.5 * (H[a * d + b] + H[b * d + a]);
+  const double tr = (eps[0] + eps[4] + eps[8]) / 3.0;
+  double ee = 0.0;
+  for (int k = 0; k < 9; ++k) {
+    const double e = eps[k] - (k % 4 == 0 ? tr : 0.0);
+    ee += e * e;
+  }
+  return std::sqrt(2.0 / 3.0 * ee);
+}
+
+}  // namespace
+
+std::vector<OutputField> CorrespondenceModel::output_fields(const double* u, bool probe_fields,
+                                                            bool gradients) const {
+  const int d = dim_;
+  const std::size_t n = particles();
+  std::vector<OutputField> out;
+  OutputField u3{"displacement", 3, std::vector<double>(n * 3, 0.0)};
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = 0; a < d; ++a) u3.values[i * 3 + a] = u[i * d + a];
+  out.push_back(std::move(u3));
+  std::vector<double> sigma;
+  stress3(u, sigma);
+  OutputField vm{"von_mises", 1, std::vector<double>(n)}, mean{"mean_stress", 1, std::vector<double>(n)};
+  for (std::size_t i = 0; i < n; ++i) {
+    vm.values[i] = von_mises(sigma.data() + i * 9);
+    const double* s = sigma.data() + i * 9;
+    mean.values[i] = (s[0] + s[4] + s[8]) / 3.0;
+  }
+  // The stress gradient by G: for the surface stress and for reconstructing probes.
+  const BoundaryFacets& facets = trace_.facets();
+  std::vector<double> grad_sigma;
+  if (!facets.empty() || gradients) {
+    grad_sigma.resize(sigma.size() * d);
+    G_.apply(sigma.data(), 9, grad_sigma.data());
+  }
+  out.push_back({"stress", 9, sigma});
+  out.push_back(std::move(vm));
+  out.push_back(std::move(mean));
+  out.push_back({"volume", 1, volume_});
+  // The stress at the surface: each facet owner's stress reconstructed at its facets'
+  // centroids, area-weighted (the facets of a corner particle: their mean); elsewhere the
+  // particle's own stress (finite: the snapshot guard refuses NaN, and a user's colour map
+  // then shows the whole body).
+  if (!facets.empty()) {
+    std::vector<double> area(n, 0.0), surface_sigma(n * 9, 0.0), surface_vm(n, 0.0);
+    double s9[9];
+    for (std::size_t k = 0; k < facets.size(); ++k) {
+      const std::size_t i = facets.particle[k];
+      const double* y = facets.centroid.data() + k * d;
+      for (int c = 0; c < 9; ++c) {
+        s9[c] = sigma[i * 9 + c];
+        for (int b = 0; b < d; ++b) s9[c] += grad_sigma[(i * 9 + c) * d + b] * (y[b] - x_[i * d + b]);
+      }
+      for (int c = 0; c < 9; ++c) surface_sigma[i * 9 + c] += facets.area[k] * s9[c];
+      area[i] += facets.area[k];
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int c = 0; c < 9; ++c)
+        surface_sigma[i * 9 + c] = area[i] > 0.0 ? surface_sigma[i * 9 + c] / area[i] : sigma[i * 9 + c];
+      surface_vm[i] = von_mises(surface_sigma.data() + i * 9);
+    }
+    out.push_back({"surface_stress", 9, std::move(surface_sigma)});
+    out.push_back({"surface_von_mises", 1, std::move(surface_vm)});
+  }
+  // Improved and strong formulations: subregion 1 = E (strong form), 0 = D (weak form).
+  if (!surface_.in_band.empty()) {
+    out.push_back({"subregion_E", 1, std::vector<double>(surface_.in_band.begin(), surface_.in_band.end())});
+    out.push_back({"surface", 1, std::vector<double>(surface_.on_surface.begin(), surface_.on_surface.end())});
+  }
+  if (plastic_) {
+    std::vector<double> xi, eps_p, yielded;
+    for (const auto& point : plastic_->committed()) {
+      xi.push_back(point.law.xi);
+      yielded.push_back(point.law.xi > 0.0 ? 1.0 : 0.0);
+      eps_p.insert(eps_p.end(), point.law.eps_p, point.law.eps_p + 9);
+    }
+    out.push_back({"eq_plastic_strain", 1, std::move(xi)});
+    out.push_back({"plastic_strain", 9, std::move(eps_p)});
+    out.push_back({"yielded", 1, std::move(yielded)});
+  }
+  if (probe_fields) {
+    OutputField H{"displacement_gradient", d * d, std::vector<double>(n * d * d)};
+    gradient(u, H.values.data());
+    OutputField eq{"equivalent_strain", 1, std::vector<double>(n)};
+    for (std::size_t i = 0; i < n; ++i) eq.values[i] = equivalent_strain_of(H.values.data() + i * d * d, d);
+    out.push_back(std::move(H));
+    out.push_back(std::move(eq));
+  }
+  if (gradients) out.push_back({"stress_gradient", 9 * d, std::move(grad_sigma)});
+  return out;
+}
+
+std::vector<double> CorrespondenceModel::stress_measure(const double* u) const {
+  std::vector<double> sigma;
+  stress3(u, sigma);
+  return sigma;
+}
+
+std::vector<PlanLine> CorrespondenceModel::plan() const {
+  std::vector<PlanLine> lines;
+  if (dim_ == 2) lines.push_back({"dimension", material_.plane == PlaneCondition::strain ? ", plane strain" : ", plane stress"});
+  lines.push_back({"model", std::string("correspondence, ") + formulation_name(formulation_) +
+                                " formulation, stabilization C_hg = " + format("%g", c_hg_)});
+  if (formulation_ == Formulation::consistent) {
+    const ConsistencyReport& c = consistency_;
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "%zu boundary facets; correction |G~ - G|/|G| = %.3g, %d CG iterations, column residual %.2g, "
+                  "facet defect %.2g",
+                  trace_.facets().size(), c.relative_change, c.iterations, c.residual, c.rhs_defect);
+    lines.push_back({"consistent G~", buf});
+  }
+  if (formulation_ == Formulation::improved || formulation_ == Formulation::strong) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "E (strong form, within 2 delta of a surface): %zu particles, D (weak form): %zu, surface "
+                  "particles: %zu",
+                  surface_.band.size(), surface_.interior.size(),
+                  static_cast<std::size_t>(std::count(surface_.on_surface.begin(), surface_.on_surface.end(), 1)));
+    lines.push_back({"subregions", buf});
+  }
+  return lines;
+}
+
+std::vector<std::string> CorrespondenceModel::not_assembled() const {
+  std::vector<std::string> items = {order_ == 2 ? "Hessian (operator order 2 keeps the fit's gradient only)"
+                                                : "Hessian (no second-order model)"};
+  if (c_hg_ <= 0.0) items.push_back("stabilization S (C_hg = 0)");
+  return items;
+}
+
+void CorrespondenceModel::set_history_mode(HistoryMode mode) {
+  if (plastic_) plastic_->set_mode(mode == HistoryMode::flagged ? PlasticMode::lbc : PlasticMode::return_map);
+}
+
+void CorrespondenceModel::commit_trial() {
+  if (plastic_) plastic_->commit();
+}
+
+std::size_t CorrespondenceModel::flag_violations(double tolerance) {
+  return plastic_ ? plastic_->flag_violations(tolerance) : 0;
+}
+
+std::vector<double> CorrespondenceModel::history_variable() const {
+  std::vector<double> xi;
+  if (plastic_)
+    for (const auto& point : plastic_->committed()) xi.push_back(point.law.xi);
+  return xi;
+}
+
+std::size_t CorrespondenceModel::values_per_particle() const { return kPointReals; }
+
+HistoryState CorrespondenceModel::save_history() const {
+  HistoryState s;
+  if (!plastic_) return s;
+  s.values.reserve(plastic_->size() * kPointReals);
+  for (const auto& point : plastic_->committed()) {
+    s.values.insert(s.values.end(), point.law.sigma, point.law.sigma + 9);
+    s.values.insert(s.values.end(), point.law.eps_p, point.law.eps_p + 9);
+    s.values.push_back(point.law.xi);
+    s.values.insert(s.values.end(), point.eps, point.eps + 9);
+  }
+  s.flags = plastic_->flags();
+  return s;
+}
+
+void CorrespondenceModel::restore_history(const HistoryState& s) {
+  if (!plastic_) {
+    if (!s.values.empty() || !s.flags.empty())
+      throw std::invalid_argument("CorrespondenceModel: a plastic history for an elastic model");
+    return;
+  }
+  if (s.values.size() != s.flags.size() * kPointReals)
+    throw std::invalid_argument("CorrespondenceModel: the history holds " + std::to_string(s.values.size()) +
+                                " values for " + std::to_string(s.flags.size()) + " flags (28 per particle)");
+  std::vector<PlasticPoints::Point> points(s.flags.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double* x = s.values.data() + i * kPointReals;
+    std::copy(x, x + 9, points[i].law.sigma), std::copy(x + 9, x + 18, points[i].law.eps_p);
+    points[i].law.xi = x[18];
+    std::copy(x + 19, x + 28, points[i].eps);
+  }
+  plastic_->restore(std::move(points), s.flags);
+}
+
+void CorrespondenceModel::reset_history() {
+  if (plastic_) plastic_->reset();
+}
+
+}  // namespace perinom
