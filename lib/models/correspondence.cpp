@@ -7,6 +7,7 @@
 
 #include "perinom/core/error.hpp"
 #include "perinom/core/parallel.hpp"
+#include "perinom/models/elastic_points.hpp"
 #include "perinom/operators/bond_weights.hpp"
 #include "perinom/operators/second_order_operator.hpp"
 #include "perinom/operators/second_order_stabilization.hpp"
@@ -14,6 +15,20 @@
 #include "perinom/operators/tangent_rows.hpp"
 
 namespace perinom {
+namespace {
+
+// The pointwise law is called once per block of this many particles, in parallel: one
+// virtual call per block, and the block's P still in cache when the model scales it.
+constexpr std::size_t law_block = 256;
+
+template <class Body>
+void for_each_law_block(std::size_t n, Body&& body) {
+  const std::size_t blocks = (n + law_block - 1) / law_block;
+#pragma omp parallel for schedule(static)
+  for (std::size_t b = 0; b < blocks; ++b) body(b * law_block, std::min(n, (b + 1) * law_block));
+}
+
+}  // namespace
 
 bool parse_formulation(const std::string& name, Formulation& f) {
   if (name == "classical") f = Formulation::classical;
@@ -36,13 +51,14 @@ bool parse_stabilization_storage(const std::string& name, StabilizationStorage& 
 CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families& families,
                                          const LinearElastic& material,
                                          const CorrespondenceOptions& options, Surface surface,
-                                         BoundaryFacets facets)
+                                         BoundaryFacets facets, std::unique_ptr<PointwiseLaw> law)
     : dim_(cloud.dim),
       order_(options.operator_order),
       formulation_(options.formulation),
       material_(material),
       surface_(std::move(surface)),
-      volume_(cloud.volume) {
+      volume_(cloud.volume),
+      law_(std::move(law)) {
   c_hg_ = options.stabilization;
   x_ = cloud.x;
   const bool consistent = formulation_ == Formulation::consistent;
@@ -56,11 +72,20 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
     throw InputError("model.stabilization_storage: the consistent formulation stores S assembled (its "
                      "corrected G has not the first-order identities the fused and matrix-free forms "
                      "rest on); use auto or assembled");
-  if (options.plasticity) {
+  if (law_ && (law_->dim() != dim_ || law_->size() != cloud.size()))
+    throw std::invalid_argument("CorrespondenceModel: a law for " + std::to_string(law_->size()) + " particles in " +
+                                std::to_string(law_->dim()) + "-D on a cloud of " + std::to_string(cloud.size()) +
+                                " in " + std::to_string(dim_) + "-D");
+  if (!law_ && options.plasticity) {
     if (material.plane == PlaneCondition::stress)
       throw InputError("material.plane: Drucker-Prager plasticity needs plane strain in 2-D");
-    plastic_.emplace(*options.plasticity, dim_, volume_.size(), options.kinematics);
+    auto points = std::make_unique<PlasticPoints>(*options.plasticity, dim_, volume_.size(), options.kinematics);
+    plastic_ = points.get();
+    law_ = std::move(points);
   }
+  if (!law_) law_ = std::make_unique<ElasticPoints>(material, volume_.size());
+  C_.resize(static_cast<std::size_t>(dim_) * dim_ * dim_ * dim_);
+  material_.tangent(C_.data());  // until the first prepare_tangent
   if (options.follower_pressure) {
     if (!options.plasticity || options.kinematics != Kinematics::finite_rotation)
       throw std::invalid_argument("CorrespondenceModel: follower pressures need finite_rotation kinematics");
@@ -165,14 +190,14 @@ void CorrespondenceModel::internal_force(const double* u, double* f) {
   const bool stabilized = matrix_free || fused;  // G^T(-B) joins the transposed product
   const bool strong_rows = formulation_ == Formulation::improved || formulation_ == Formulation::strong;
   // Q = V P - B: the stabilization's G^T(-B) rides along with the weak-form product.
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    double* q = Q_.data() + i * d2;
-    if (plastic_) plastic_->stress(i, H_.data() + i * d2, q);
-    else material_.stress(H_.data() + i * d2, q);
-    if (strong_rows) std::copy(q, q + d2, P_.data() + i * d2);
-    for (int k = 0; k < d2; ++k) q[k] = q[k] * volume_[i] - (stabilized ? B_[i * d2 + k] : 0.0);
-  }
+  for_each_law_block(n, [&](std::size_t lo, std::size_t hi) {
+    law_->stresses(lo, hi, H_.data(), Q_.data());
+    for (std::size_t i = lo; i < hi; ++i) {
+      double* q = Q_.data() + i * d2;
+      if (strong_rows) std::copy(q, q + d2, P_.data() + i * d2);
+      for (int k = 0; k < d2; ++k) q[k] = q[k] * volume_[i] - (stabilized ? B_[i * d2 + k] : 0.0);
+    }
+  });
   if (!strong_rows) {
     G_.apply_transpose(Q_.data(), dim_, f);
   } else {
@@ -208,19 +233,12 @@ void CorrespondenceModel::follow_loads(const Loading& loading, double s) {
 }
 
 double CorrespondenceModel::energy(const double* u) {
-  const int d2 = dim_ * dim_;
   const std::size_t n = particles();
   G_.apply(u, dim_, H_.data());
+  double* psi = Q_.data();  // the energy densities (Q_ is scratch here)
+  law_->energies(H_.data(), psi);
   // Summed in fixed blocks: the same bits for any thread count.
-  if (plastic_) {
-    // The stored elastic energy of the state at u (plastic work is dissipated, not stored):
-    // evaluate the trial states first (Q_ is scratch here).
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) plastic_->stress(i, H_.data() + i * d2, Q_.data() + i * d2);
-  }
-  double w = parallel_sums<1>(n, [&](std::size_t i, double* acc) {
-    acc[0] += volume_[i] * (plastic_ ? plastic_->stored_energy(i) : material_.energy(H_.data() + i * d2));
-  })[0];
+  double w = parallel_sums<1>(n, [&](std::size_t i, double* acc) { acc[0] += volume_[i] * psi[i]; })[0];
   if (S_ || S_assembled_) {
     // W_s = 1/2 u . S u, with S u = G^T(-B) + the direct bond term, or the stored S0.
     if (S_assembled_) {
@@ -268,34 +286,20 @@ void CorrespondenceModel::visit_tangent_rows(const TangentRowVisitor& visit) con
   const std::size_t d3 = static_cast<std::size_t>(dim_) * dim_ * dim_;
   const bool follows = follower_ && follower_->active() && follower_tangent_.size() == particles() * d3;
   const double* local = follows ? follower_tangent_.data() : nullptr;
-  if (!C_.empty()) {
-    visit_rows(PointwiseTangent{C_.data(), std::size_t(dim_ * dim_ * dim_ * dim_), volume_.data()}, visit, local);
-    return;
-  }
-  std::vector<double> C(dim_ * dim_ * dim_ * dim_);
-  material_.tangent(C.data());
-  visit_rows(PointwiseTangent{C.data(), 0, volume_.data()}, visit, local);
+  visit_rows(PointwiseTangent{C_.data(), C_stride_, volume_.data()}, visit, local);
 }
 
 void CorrespondenceModel::prepare_tangent(const double* u) {
-  const bool follows = follower_ && follower_->active();
-  if (!plastic_ && !follows) return;
-  const int d2 = dim_ * dim_, d4 = d2 * d2;
   G_.apply(u, dim_, H_.data());
-  if (follows) follower_->tangent(H_.data(), follower_tangent_);
-  if (!plastic_) return;
-  C_.resize(particles() * d4);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < particles(); ++i) plastic_->tangent(i, H_.data() + i * d2, C_.data() + i * d4);
+  if (follower_ && follower_->active()) follower_->tangent(H_.data(), follower_tangent_);
+  C_stride_ = law_->tangents(H_.data(), C_);
 }
 
 void CorrespondenceModel::commit(const double* u) {
-  if (!plastic_) return;
-  const int d2 = dim_ * dim_;
+  if (!law_->has_history()) return;
   G_.apply(u, dim_, H_.data());
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < particles(); ++i) plastic_->stress(i, H_.data() + i * d2, Q_.data() + i * d2);
-  plastic_->commit();
+  for_each_law_block(particles(), [&](std::size_t lo, std::size_t hi) { law_->stresses(lo, hi, H_.data(), Q_.data()); });
+  law_->commit();
 }
 
 std::vector<double> CorrespondenceModel::stiffness_row_sums() const {
@@ -327,7 +331,8 @@ std::vector<std::pair<std::string, std::size_t>> CorrespondenceModel::memory() c
   m.emplace_back("workspaces (grad u, V.P, P, B, r)",
                  (H_.size() + Q_.size() + P_.size() + B_.size() + r_.size() + Su_.size() + lap_.size()) *
                      sizeof(double));
-  if (plastic_) m.emplace_back("plastic states (committed and trial)", plastic_->memory_bytes() + C_.size() * sizeof(double));
+  if (law_->has_history())
+    m.emplace_back("material states (committed and trial) and tangents", law_->memory_bytes() + C_.size() * sizeof(double));
   if (formulation_ == Formulation::improved || formulation_ == Formulation::strong)
     m.emplace_back("surface normals and band E",
                    surface_.normal_over_h.size() * sizeof(double) +
@@ -341,14 +346,7 @@ void CorrespondenceModel::stress3(const double* u, std::vector<double>& sigma) c
   std::vector<double> H(particles() * d2);
   gradient(u, H.data());
   sigma.resize(particles() * 9);
-  for (std::size_t i = 0; i < particles(); ++i) {
-    if (!plastic_) {
-      material_.stress3(H.data() + i * d2, sigma.data() + i * 9);
-      continue;
-    }
-    const auto point = plastic_->evaluate(i, H.data() + i * d2);
-    plastic_->cauchy(point, sigma.data() + i * 9);
-  }
+  law_->cauchy(H.data(), sigma.data());
 }
 
 }  // namespace perinom

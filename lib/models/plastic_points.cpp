@@ -140,6 +140,61 @@ std::size_t PlasticPoints::flag_violations(double tolerance) {
 
 void PlasticPoints::commit() { committed_ = trial_; }
 
+void PlasticPoints::stresses(std::size_t begin, std::size_t end, const double* H, double* P) {
+  const std::size_t d2 = static_cast<std::size_t>(dim_) * dim_;
+  for (std::size_t i = begin; i < end; ++i) stress(i, H + i * d2, P + i * d2);
+}
+
+void PlasticPoints::energies(const double* H, double* psi) {
+  const std::size_t d2 = static_cast<std::size_t>(dim_) * dim_;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < size(); ++i) {
+    double P[9];
+    stress(i, H + i * d2, P);  // keeps the trial state whose stored energy this is
+    psi[i] = stored_energy(i);
+  }
+}
+
+std::size_t PlasticPoints::tangents(const double* H, std::vector<double>& C) const {
+  const std::size_t d2 = static_cast<std::size_t>(dim_) * dim_, d4 = d2 * d2;
+  C.resize(size() * d4);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < size(); ++i) tangent(i, H + i * d2, C.data() + i * d4);
+  return d4;
+}
+
+void PlasticPoints::cauchy(const double* H, double* sigma) const {
+  const std::size_t d2 = static_cast<std::size_t>(dim_) * dim_;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < size(); ++i) cauchy(evaluate(i, H + i * d2), sigma + i * 9);
+}
+
+std::vector<LawField> PlasticPoints::fields() const {
+  return {{"stress", 9}, {"eq_plastic_strain", 1}, {"plastic_strain", 9}, {"yielded", 1}, {"lbc_flagged", 1}};
+}
+
+void PlasticPoints::field(const std::string& name, const double* H, std::vector<double>& values) const {
+  const std::size_t n = size();
+  if (name == "stress") {
+    values.resize(n * 9);
+    cauchy(H, values.data());
+  } else if (name == "eq_plastic_strain" || name == "yielded") {
+    values.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double xi = committed_[i].law.xi;
+      values[i] = name == "yielded" ? (xi > 0.0 ? 1.0 : 0.0) : xi;
+    }
+  } else if (name == "plastic_strain") {
+    values.resize(n * 9);
+    for (std::size_t i = 0; i < n; ++i) std::copy(committed_[i].law.eps_p, committed_[i].law.eps_p + 9, values.begin() + i * 9);
+  } else if (name == "lbc_flagged") {
+    values.assign(flagged_.begin(), flagged_.end());
+  } else {
+    throw std::invalid_argument("PlasticPoints: no output field '" + name +
+                                "' (it offers: stress, eq_plastic_strain, plastic_strain, yielded, lbc_flagged)");
+  }
+}
+
 void PlasticPoints::reset() {
   Point virgin;
   if (kinematics_ == Kinematics::finite_rotation) virgin.eps[0] = virgin.eps[4] = virgin.eps[8] = 1.0;

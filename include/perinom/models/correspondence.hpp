@@ -27,6 +27,7 @@
 #include "perinom/models/model_history.hpp"
 #include "perinom/models/tangent_model.hpp"
 #include "perinom/models/plastic_points.hpp"
+#include "perinom/models/pointwise_law.hpp"
 #include "perinom/neighbors/families.hpp"
 #include "perinom/operators/boundary_trace.hpp"
 #include "perinom/operators/consistent_gradient.hpp"
@@ -70,6 +71,7 @@ struct CorrespondenceOptions {
   int operator_order = 1;
   /// A Drucker-Prager law in place of the linear elastic one (its E and nu must be the
   /// material's; the stabilization and the explicit solvers' mass use the elastic moduli).
+  /// Any other law is given to the constructor (PointwiseLaw).
   std::optional<DruckerPrager> plasticity;
   Kinematics kinematics = Kinematics::small_strain;  ///< of the plastic law (PlasticPoints)
   /// Pressures follow the deformed surface (follower_pressure.hpp); finite_rotation only.
@@ -83,9 +85,13 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// The improved and strong formulations need the surface data (find_surface), the
   /// consistent one the boundary facets (lattice_facets). The consistent formulation stores S
   /// assembled (fused storage is refused: it rests on G's first-order identities).
+  /// The pointwise law: `law` when given (its dim() and size() must be the cloud's; the
+  /// material then only gives the elastic moduli of S, the mass and the stiffness bound),
+  /// otherwise Drucker-Prager points (options.plasticity) or the material's ElasticPoints.
   CorrespondenceModel(const PointCloud& cloud, const Families& families,
                       const LinearElastic& material, const CorrespondenceOptions& options,
-                      Surface surface = {}, BoundaryFacets facets = {});
+                      Surface surface = {}, BoundaryFacets facets = {},
+                      std::unique_ptr<PointwiseLaw> law = nullptr);
   // The stabilization refers to this object's G: no copies, no moves.
   CorrespondenceModel(const CorrespondenceModel&) = delete;
   CorrespondenceModel& operator=(const CorrespondenceModel&) = delete;
@@ -104,18 +110,23 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// plus S. See for_each_tangent_row for the arguments of visit.
   void visit_tangent_rows(const TangentRowVisitor& visit) const override;
 
-  /// grad u at every particle (N x d x d), and the 3 x 3 Cauchy stress (N x 9). With
-  /// plasticity the stress is the return map from the committed state at u.
+  /// grad u at every particle (N x d x d), and the 3 x 3 Cauchy stress (N x 9): the law's
+  /// at u from its committed states (PointwiseLaw::cauchy), nothing kept.
   void gradient(const double* u, double* H) const;
   void stress3(const double* u, std::vector<double>& sigma) const;
 
-  /// The particles' plastic states, or nullptr for an elastic model.
-  PlasticPoints* plastic() { return plastic_ ? &*plastic_ : nullptr; }
-  const PlasticPoints* plastic() const { return plastic_ ? &*plastic_ : nullptr; }
-  /// Plasticity: evaluates every particle at u (by the current mode) and commits.
+  /// The pointwise law between G and G^T, and the history it keeps.
+  PointwiseLaw& law() { return *law_; }
+  const PointwiseLaw& law() const { return *law_; }
+  /// The Drucker-Prager points the model built from options.plasticity, or nullptr (for the
+  /// load path's mode, LBC flags and checkpoints until they go through the law's history).
+  PlasticPoints* plastic() { return plastic_; }
+  const PlasticPoints* plastic() const { return plastic_; }
+  /// A law with history: evaluates every particle at u and commits (nothing otherwise).
   void commit(const double* u) override;
-  /// Plasticity: the consistent tangents at u, used by visit_tangent_rows until the next
-  /// call (the Newton path calls it before each assembly). Elastic models ignore it.
+  /// The law's tangents at u (PointwiseLaw::tangents), used by visit_tangent_rows until the
+  /// next call (the Newton path calls it before each assembly); before the first call the
+  /// rows use the elastic moduli of the material.
   void prepare_tangent(const double* u) override;
 
   const GradientOperator& G() const { return G_; }
@@ -179,8 +190,10 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   std::vector<double> H_, Q_, P_;  // workspaces: grad u, V . P, and P for strong rows
   std::vector<double> B_, r_, Su_;  // workspaces of the stabilization: B (or T), r, S u
   std::vector<double> lap_;          // fused: the weighted Laplacian of u
-  std::optional<PlasticPoints> plastic_;
-  std::vector<double> C_;            // plasticity: per-particle tangents (prepare_tangent)
+  std::unique_ptr<PointwiseLaw> law_;
+  PlasticPoints* plastic_ = nullptr;  // law_, when built from options.plasticity
+  std::vector<double> C_;             // the law's tangents at the last prepare_tangent
+  std::size_t C_stride_ = 0;          // between particles in C_ (0: one for all)
   BoundaryTrace trace_;
   ConsistencyReport consistency_;
   std::optional<FollowerPressure> follower_;

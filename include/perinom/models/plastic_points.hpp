@@ -11,10 +11,14 @@
 ///   return_map: every particle answers with the return map from its committed state
 ///               (Newton on a load step, and the plain explicit scheme that commits after
 ///               every iteration).
+/// Through PointwiseLaw the model sees the batch calls (stresses, energies, tangents, cauchy,
+/// commit, fields); the load path reaches the mode, the LBC flags and the checkpointed states
+/// through the per-particle calls below.
 #include <cstdint>
 #include <vector>
 
 #include "perinom/materials/drucker_prager.hpp"
+#include "perinom/models/pointwise_law.hpp"
 
 namespace perinom {
 
@@ -30,7 +34,7 @@ enum class PlasticMode { lbc, return_map };
 ///   rule through all of these (the polar rotations' derivatives included).
 enum class Kinematics { small_strain, finite_rotation };
 
-class PlasticPoints {
+class PlasticPoints final : public PointwiseLaw {
  public:
   /// One particle's state: the law's state and the total strain it belongs to.
   struct Point {
@@ -44,7 +48,19 @@ class PlasticPoints {
   Kinematics kinematics() const { return kinematics_; }
 
   const DruckerPrager& law() const { return law_; }
-  std::size_t size() const { return committed_.size(); }
+  std::size_t size() const override { return committed_.size(); }
+  int dim() const override { return dim_; }
+  bool has_history() const override { return true; }
+
+  // PointwiseLaw: each particle as stress(), stored_energy(), tangent() and cauchy() below.
+  void stresses(std::size_t begin, std::size_t end, const double* H, double* P) override;
+  void energies(const double* H, double* psi) override;
+  std::size_t tangents(const double* H, std::vector<double>& C) const override;
+  void cauchy(const double* H, double* sigma) const override;
+  /// "stress"; "eq_plastic_strain" (xi), "plastic_strain" (3 x 3), "yielded" (1 where
+  /// xi > 0), "lbc_flagged" (1 where the LBC correction flagged the particle), all committed.
+  std::vector<LawField> fields() const override;
+  void field(const std::string& name, const double* H, std::vector<double>& values) const override;
   void set_mode(PlasticMode m) { mode_ = m; }
   PlasticMode mode() const { return mode_; }
 
@@ -67,7 +83,7 @@ class PlasticPoints {
   /// Returns how many were flagged now.
   std::size_t flag_violations(double tolerance);
   /// Makes the kept trial states the committed ones.
-  void commit();
+  void commit() override;
   /// The flagged particles.
   std::size_t flagged() const;
   /// Back to the virgin state: no stress, no plastic strain, no flag.
@@ -80,7 +96,7 @@ class PlasticPoints {
   const std::vector<Point>& committed() const { return committed_; }
   const std::vector<Point>& trial() const { return trial_; }
   const std::vector<std::uint8_t>& flags() const { return flagged_; }
-  std::size_t memory_bytes() const;
+  std::size_t memory_bytes() const override;
 
  private:
   /// The 3 x 3 strain of grad u (d x d); in 2-D plane strain.
