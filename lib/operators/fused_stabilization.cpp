@@ -1,5 +1,8 @@
 #include "perinom/operators/fused_stabilization.hpp"
 
+#include <algorithm>
+#include <cstdint>
+
 #include "operator_access.hpp"
 
 namespace perinom {
@@ -35,21 +38,33 @@ void FusedStabilization::refresh_bond(Offset k, std::size_t l, std::size_t j) {
   // c_lj = cv_l wv_lj + cv_j wv_jl: bond (l, j) and its reverse (j, l), dead ones weigh 0.
   const BondGraph& g = G_->graph();
   const std::vector<double>& wv = OperatorAccess::wv(*G_);
-  const Offset back = g.find(j, static_cast<ParticleId>(l));
+  const Offset back = g.reverse(k);
   const double c = cv_[l] * (g.alive(k) ? wv[k] : 0.0) + cv_[j] * (g.alive(back) ? wv[back] : 0.0);
   if (c32_.empty()) c_[k] = c;
   else c32_[k] = float(c);
 }
 
-void FusedStabilization::refresh_rows(const std::vector<ParticleId>& rows) {
+void FusedStabilization::refresh_rows(const std::vector<ParticleId>& rows_in) {
   const BondGraph& g = G_->graph();
-  for (const ParticleId i : rows) refresh_particle(i);
-  for (const ParticleId i : rows)
+  std::vector<ParticleId> rows = rows_in;
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  const bool parallel = rows.size() > 64;
+#pragma omp parallel for schedule(static) if (parallel)
+  for (std::size_t r = 0; r < rows.size(); ++r) refresh_particle(rows[r]);
+  // Row i writes c of its bonds, and of their reverses (j, i) when row j is not refreshed
+  // itself (then j writes it): each c has one writer.
+  std::vector<std::uint8_t> listed(cv_.size(), 0);
+  for (const ParticleId i : rows) listed[i] = 1;
+#pragma omp parallel for schedule(dynamic, 16) if (parallel)
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const ParticleId i = rows[r];
     for (Offset k = g.begin(i); k < g.end(i); ++k) {
       const ParticleId j = g.col(k);
       refresh_bond(k, i, j);
-      refresh_bond(g.find(j, i), j, i);
+      if (!listed[j]) refresh_bond(g.reverse(k), j, i);
     }
+  }
 }
 
 void FusedStabilization::gradient_and_laplacian(const double* u, double* H, double* lap) const {

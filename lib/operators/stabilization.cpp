@@ -87,7 +87,10 @@ void Stabilization::refresh_coefficient(std::size_t i, const std::vector<double>
 void Stabilization::refresh_rows(const std::vector<ParticleId>& rows) {
   const BondGraph& g = G_->graph();
   const std::vector<double>& wv = OperatorAccess::wv(*G_);
-  for (const ParticleId i : rows) {
+  // Each row writes its own bonds, in both orders (distinct dual entries).
+#pragma omp parallel for schedule(dynamic, 16) if (rows.size() > 64)
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const ParticleId i = rows[r];
     refresh_coefficient(i, volume_);
     for (Offset k = g.begin(i); k < g.end(i); ++k) t_wv_[g.dual_entry(k)] = wv_[k] = g.alive(k) ? wv[k] : 0.0;
   }

@@ -2,9 +2,11 @@
 // bonds gives (the operator, its transpose, every stabilization storage, the tangent rows),
 // and a particle that loses its family is detached without a NaN.
 #include <catch2/catch.hpp>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <random>
@@ -397,4 +399,24 @@ TEST_CASE("an interleaved multi-field vector is used in place, 4 components in 3
       }
     }
   }
+}
+
+TEST_CASE("the second-order stabilization energy gives the same bits on 1 and 2 threads", "[operators][second_order]") {
+  const PointCloud cloud = test::lattice(3, 8, 0.3);
+  const Families f = knn_families(cloud, 30);
+  const NonlocalOperator D(cloud, f, bond_weights(cloud, f, Influence::inverse_square), OperatorOptions{2, true});
+  const std::vector<double> area(cloud.size(), 1.0);
+  const SecondOrderStabilization S(cloud, D, second_order_stabilization_coefficients(cloud, D, 0.5, 1.0, area));
+  const auto w = test::random_field(cloud.size(), 1.0, 13);
+  std::vector<double> g(cloud.size() * 3), h(cloud.size() * 6);
+  D.apply(w.data(), 1, g.data());
+  D.apply(w.data(), 1, h.data(), Derivative::hessian);
+  double energy[2];
+  const int before = omp_get_max_threads();
+  for (const int t : {0, 1}) {
+    omp_set_num_threads(t + 1);
+    energy[t] = S.energy(w.data(), g.data(), h.data());
+  }
+  omp_set_num_threads(before);
+  CHECK(std::memcmp(&energy[0], &energy[1], sizeof(double)) == 0);
 }

@@ -64,6 +64,9 @@ class BondGraph {
   Offset find(std::size_t i, ParticleId j) const;
   /// True when j in H_i exactly when i in H_j (a constant horizon radius).
   bool symmetric() const { return symmetric_; }
+  /// The reverse (j, i) of bond k = (i, j), in O(1): a symmetric graph's dual row j lists
+  /// the columns of row j in the same order. Only for symmetric graphs.
+  Offset reverse(Offset k) const { return begin(families_.neighbors[k]) + slot_[k]; }
 
   /// Breaks (i, j) and (j, i), where they exist and are alive; true when a bond died.
   bool break_bond(ParticleId i, ParticleId j);

@@ -33,7 +33,7 @@ class Stabilization {
   /// Adds row i of S0 to acc: value to acc.at(j)[k * (copies + 1)] for k < copies (copies = 1
   /// for the scalar S0, d for the diagonal of d x d blocks).
   void add_row(std::size_t i, RowAccumulator& acc, int copies) const;
-  /// After G.refresh_rows(rows): c_i and the w V of those rows' bonds, in both orders.
+  /// After G.refresh_rows(rows) (distinct rows): c_i and the w V of those rows' bonds, in both orders.
   void refresh_rows(const std::vector<ParticleId>& rows);
 
   /// c_i V_i of every particle.
