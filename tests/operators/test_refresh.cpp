@@ -402,13 +402,14 @@ TEST_CASE("an interleaved multi-field vector is used in place, 4 components in 3
 }
 
 TEST_CASE("the second-order stabilization energy gives the same bits on 1 and 2 threads", "[operators][second_order]") {
-  const PointCloud cloud = test::lattice(3, 8, 0.3);
-  const Families f = knn_families(cloud, 30);
+  // Enough particles for parallel_sums to use the team (core/parallel.hpp: 16384).
+  const PointCloud cloud = test::lattice(2, 130, 0.3);
+  const Families f = knn_families(cloud, 14);
   const NonlocalOperator D(cloud, f, bond_weights(cloud, f, Influence::inverse_square), OperatorOptions{2, true});
   const std::vector<double> area(cloud.size(), 1.0);
   const SecondOrderStabilization S(cloud, D, second_order_stabilization_coefficients(cloud, D, 0.5, 1.0, area));
   const auto w = test::random_field(cloud.size(), 1.0, 13);
-  std::vector<double> g(cloud.size() * 3), h(cloud.size() * 6);
+  std::vector<double> g(cloud.size() * 2), h(cloud.size() * 3);
   D.apply(w.data(), 1, g.data());
   D.apply(w.data(), 1, h.data(), Derivative::hessian);
   double energy[2];
