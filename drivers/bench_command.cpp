@@ -7,6 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <random>
+#include <set>
+#include <tuple>
 #include <vector>
 
 #include "commands.hpp"
@@ -15,7 +19,11 @@
 #include "perinom/core/timer.hpp"
 #include "perinom/geometry/lattice.hpp"
 #include "perinom/models/correspondence.hpp"
+#include "perinom/neighbors/bond_graph.hpp"
 #include "perinom/neighbors/search.hpp"
+#include "perinom/operators/fused_stabilization.hpp"
+#include "perinom/operators/nonlocal_operator.hpp"
+#include "perinom/operators/stabilization.hpp"
 #include "perinom/operators/scalar_csr.hpp"
 #include "perinom/solvers/adr.hpp"
 #include "perinom/solvers/verlet.hpp"
@@ -81,11 +89,76 @@ double seconds_per_iteration(const CorrespondenceModel& model, const PointCloud&
   return (t_last - t_first) / double(k);
 }
 
+/// perinom bench refresh: breaks B random bonds (fixed seed) of the lattice's radius
+/// families and times the refresh of the rows they touch (G, G^T, the matrix-free and the
+/// fused stabilization) against a full build of the same operators from the bond weights.
+/// Ends with one JSON object on the last line.
+int bench_refresh(const Options& opt, const PointCloud& cloud) {
+  const int d = cloud.dim;
+  // 1. The families and what a model assembles from them (radius families: fused S applies).
+  const Families fam = radius_families(cloud, 3.015);
+  auto graph = std::make_shared<BondGraph>(fam);
+  const double modulus = 0.5 * 2.0 * 1.0;  // C_hg 2 mu
+  auto build = [&] {
+    const BondWeights bw = bond_weights(cloud, fam, Influence::inverse_square);
+    auto G = std::make_unique<NonlocalOperator>(cloud, graph, bw);
+    auto S = std::make_unique<Stabilization>(cloud, *G, modulus);
+    auto F = FusedStabilization::make(cloud, *G, modulus);
+    return std::make_tuple(std::move(G), std::move(S), std::move(F));
+  };
+  // 2. A full build, timed (best of three).
+  double build_seconds = 1e300;
+  for (int rep = 0; rep < 3; ++rep) {
+    const double t0 = wall_seconds();
+    build();
+    build_seconds = std::min(build_seconds, wall_seconds() - t0);
+  }
+  auto [G, S, F] = build();
+  // 3. B distinct random bonds, broken in both directions.
+  std::mt19937_64 rng(2026);
+  std::vector<std::pair<ParticleId, ParticleId>> breaks;
+  std::set<std::pair<ParticleId, ParticleId>> chosen;
+  const long wanted = std::min<long>(opt.bonds, static_cast<long>(fam.bonds() / 4));
+  while (static_cast<long>(breaks.size()) < wanted) {
+    const std::size_t i = rng() % fam.particles();
+    const ParticleId j = fam.neighbors[fam.begin(i) + static_cast<Offset>(rng() % (fam.end(i) - fam.begin(i)))];
+    if (chosen.insert({std::min<ParticleId>(i, j), std::max<ParticleId>(i, j)}).second)
+      breaks.emplace_back(static_cast<ParticleId>(i), j);
+  }
+  const std::vector<ParticleId> rows = graph->rows_touched(breaks);
+  for (const auto& [i, j] : breaks) graph->break_bond(i, j);
+  // 4. The refresh of the touched rows, timed as the build is (best of several calls, the
+  //    fixed team; it is idempotent, so it can be repeated).
+  double refresh_seconds = 1e300, spent = 0.0;
+  for (int rep = 0; rep < 3 || (rep < 1000 && spent < 1.0); ++rep) {
+    const double t0 = wall_seconds();
+    G->refresh_rows(rows);
+    S->refresh_rows(rows);
+    F->refresh_rows(rows);
+    const double t = wall_seconds() - t0;
+    refresh_seconds = std::min(refresh_seconds, t);
+    spent += t;
+  }
+  std::printf("particles                %zu\n", cloud.size());
+  std::printf("bonds                    %zu (%.1f per particle)\n", fam.bonds(), double(fam.bonds()) / cloud.size());
+  std::printf("threads                  %d\n", omp_get_max_threads());
+  std::printf("bonds broken             %zu (%zu rows refreshed, %zu detached)\n", breaks.size(), rows.size(),
+              G->detached().size());
+  std::printf("full build (G, S, fused) %.3f s\n", build_seconds);
+  std::printf("refresh                  %.3e s (%.3f%% of a full build)\n", refresh_seconds,
+              100.0 * refresh_seconds / build_seconds);
+  std::printf("{\"dimension\": %d, \"particles\": %zu, \"bonds\": %zu, \"threads\": %d, \"bonds_broken\": %zu, "
+              "\"rows_refreshed\": %zu, \"refresh_seconds\": %.6e, \"build_seconds\": %.6e, \"ratio\": %.6e}\n",
+              d, cloud.size(), fam.bonds(), omp_get_max_threads(), breaks.size(), rows.size(), refresh_seconds,
+              build_seconds, refresh_seconds / build_seconds);
+  return 0;
+}
+
 }  // namespace
 
 int bench(const Options& opt) {
-  if (opt.positional.size() != 1 || opt.positional[0] != "force")
-    throw InputError("bench: the only benchmark is 'force'");
+  if (opt.positional.size() != 1 || (opt.positional[0] != "force" && opt.positional[0] != "refresh"))
+    throw InputError("bench: the benchmarks are 'force' and 'refresh'");
   if (opt.dimension != 2 && opt.dimension != 3) throw InputError("--dimension must be 2 or 3");
   if (opt.n < 4) throw InputError("--n must be at least 4");
   const int d = opt.dimension;
@@ -96,6 +169,7 @@ int bench(const Options& opt) {
   box.dim = d;
   for (int a = 0; a < d; ++a) box.max[a] = double(opt.n);
   const PointCloud cloud = make_lattice(box, 1.0);
+  if (opt.positional[0] == "refresh") return bench_refresh(opt, cloud);
   const double t0 = wall_seconds();
   const Families fam = radius_families(cloud, 3.015);
   LinearElastic mat;

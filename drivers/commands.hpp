@@ -21,6 +21,7 @@ struct Options {
   double stabilization = 0.5;
   std::string storage = "auto";  ///< the stabilization storage (bench)
   bool single_precision = false;  ///< G's weights stored as float
+  long bonds = 1;                 ///< bench refresh: bonds to break
   int test = 2;                   ///< material-point: seed 000 Table 2 test
   int substeps = 1000;            ///< material-point: sub-steps of the reference
   bool spectrum = false;          ///< check: also the stability check (eigenvalues of M^-1 K)

@@ -26,6 +26,7 @@ void usage() {
                "              [--restart DIR]\n"
                "  perinom check SCENE [--set dotted.key=value]... [--max-memory SIZE] [--spectrum]\n"
                "  perinom bench force --dimension 2|3 --n N [--threads T] [--stabilization C] [--storage auto|fused|assembled|matrix_free] [--single]\n"
+               "  perinom bench refresh --dimension 2|3 --n N --bonds B [--threads T]\n"
                "  perinom material-point [--test 1..7] [--substeps S] [--out DIR]\n");
 }
 
@@ -78,6 +79,7 @@ int main(int argc, char** argv) {
         if (opt.stabilization < 0.0) throw InputError("option --stabilization: must be zero or positive");
       }
       else if (a == "--storage") opt.storage = value();
+      else if (a == "--bonds") opt.bonds = integer(1, 1000000000);
       else if (a == "--test") opt.test = static_cast<int>(integer(1, 7));
       else if (a == "--substeps") opt.substeps = static_cast<int>(integer(1, 100000000));
       else if (a == "--single") opt.single_precision = true;

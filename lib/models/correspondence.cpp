@@ -9,7 +9,6 @@
 #include "perinom/core/parallel.hpp"
 #include "perinom/models/elastic_points.hpp"
 #include "perinom/operators/bond_weights.hpp"
-#include "perinom/operators/second_order_operator.hpp"
 #include "perinom/operators/second_order_stabilization.hpp"
 #include "perinom/operators/stabilization.hpp"
 #include "perinom/operators/tangent_rows.hpp"
@@ -95,17 +94,17 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
     throw std::invalid_argument("CorrespondenceModel: operator_order must be 1 or 2");
   const BondWeights weights = bond_weights(cloud, families, options.influence);
   if (order_ == 2) build_second_order(cloud, families, weights, options, facets);
-  else G_ = GradientOperator(cloud, families, weights, consistent ? WeightPrecision::float64 : options.weight_precision);
+  else G_ = NonlocalOperator(cloud, families, weights,
+                             OperatorOptions{1, false, consistent ? WeightPrecision::float64 : options.weight_precision});
+  const double modulus = options.stabilization * 2.0 * material.mu();  // c_i = modulus / tr K_i
   if (options.stabilization > 0.0 && order_ == 1 && consistent) {
     // S from the uncorrected G (zero on linear fields all the same), stored before G changes.
-    const auto c = stabilization_coefficients(weights, dim_, options.stabilization, material.mu());
-    S_assembled_ = assemble_stabilization(Stabilization(cloud, families, weights, G_, c), particles());
+    S_assembled_ = assemble_stabilization(Stabilization(cloud, G_, modulus), particles());
   } else if (options.stabilization > 0.0 && order_ == 1) {
-    const auto c = stabilization_coefficients(weights, dim_, options.stabilization, material.mu());
-    S_.emplace(cloud, families, weights, G_, c);
+    S_.emplace(cloud, G_, modulus);
     const StabilizationStorage storage = options.stabilization_storage;
     if (storage == StabilizationStorage::fused || storage == StabilizationStorage::automatic) {
-      F_ = FusedStabilization::make(cloud, families, weights, G_, c);
+      F_ = FusedStabilization::make(cloud, G_, modulus);
       if (!F_ && storage == StabilizationStorage::fused)
         throw InputError("model.stabilization_storage: fused needs symmetric families (a horizon "
                          "radius, not a neighbour count); use assembled or matrix_free");
@@ -132,22 +131,20 @@ void CorrespondenceModel::make_consistent(const PointCloud& cloud, const Familie
                                           WeightPrecision precision) {
   trace_ = BoundaryTrace(std::move(facets), cloud, G_);
   const std::vector<double> c = trace_.column_measure(particles());
-  std::vector<double> g(G_.bonds() * dim_);
-  for (std::size_t k = 0; k < G_.bonds(); ++k)
-    for (int b = 0; b < dim_; ++b) g[k * dim_ + b] = G_.weight(static_cast<Offset>(k))[b];
   // The correction keeps G~ exact for linear fields (the patch test); it would keep an order-2 G
   // exact for quadratics too if it used that fit, but the system is then far worse conditioned
   // (the fit's residuals scale with delta^3 instead of delta^2) and stalls near 1e-10 on modest
   // clouds, while the bending results barely move (measured on the 2-D cantilever).
-  const GradientOperator G1 = order_ == 1 ? GradientOperator() : GradientOperator(cloud, families, weights);
-  g = consistent_gradient_weights(cloud, families, weights, order_ == 1 ? G_ : G1, g, c, {}, &consistency_);
+  const NonlocalOperator G1 = order_ == 1 ? NonlocalOperator() : NonlocalOperator(cloud, G_.shared_graph(), weights);
+  std::vector<double> g =
+      consistent_gradient_weights(cloud, families, weights, order_ == 1 ? G_ : G1, G_, c, {}, &consistency_);
   if (!consistency_.converged) {
     char msg[200];
     std::snprintf(msg, sizeof msg, "the consistent gradient's correction did not converge (relative "
                   "residual %.3g after %d iterations)", consistency_.residual, consistency_.iterations);
     throw InputError(msg);
   }
-  G_ = GradientOperator(families, dim_, std::move(g), precision);
+  G_ = NonlocalOperator(G_.shared_graph(), dim_, std::move(g), precision);
 }
 
 void CorrespondenceModel::build_second_order(const PointCloud& cloud, const Families& families,
@@ -161,18 +158,16 @@ void CorrespondenceModel::build_second_order(const PointCloud& cloud, const Fami
   if (stabilized && storage != StabilizationStorage::automatic && storage != StabilizationStorage::assembled)
     throw InputError("model.stabilization_storage: with model.operator_order 2 the stabilization is the "
                      "second-order operator energy, stored assembled (use auto or assembled)");
-  // The Hessian weights only enter the stabilization's z_ij (seed 002 eq. 35).
-  const SecondOrderOperator fit(cloud, families, weights, SecondOrderOptions{stabilized || consistent});
-  std::vector<double> g(fit.bonds() * dim_);
-  for (std::size_t k = 0; k < fit.bonds(); ++k)
-    for (int b = 0; b < dim_; ++b) g[k * dim_ + b] = fit.gradient_weight(static_cast<Offset>(k))[b];
-  G_ = GradientOperator(families, dim_, std::move(g), consistent ? WeightPrecision::float64 : options.weight_precision);
+  G_ = NonlocalOperator(cloud, families, weights,
+                        OperatorOptions{2, false, consistent ? WeightPrecision::float64 : options.weight_precision});
+  // The first-order scale: cv_i wv_ij = c_i V_i w_ij V_j with c_i = C_hg 2 mu / tr K_i.
+  std::vector<double> cv = stabilization_coefficients(G_, options.stabilization, material_.mu());
   if (consistent) make_consistent(cloud, families, weights, facets, options.weight_precision);
   if (!stabilized) return;
-  // The first-order scale: cv_i wv_ij = c_i V_i w_ij V_j with c_i = C_hg 2 mu / tr K_i.
-  std::vector<double> cv = stabilization_coefficients(weights, dim_, options.stabilization, material_.mu());
   for (std::size_t i = 0; i < cv.size(); ++i) cv[i] *= volume_[i];
-  const SecondOrderStabilization S(cloud, weights, fit, std::move(cv));
+  // The Hessian weights only enter the stabilization's z_ij (seed 002 eq. 35).
+  const NonlocalOperator fit(cloud, G_.shared_graph(), weights, OperatorOptions{2, true});
+  const SecondOrderStabilization S(cloud, fit, std::move(cv));
   S_assembled_ = assemble_second_order_stabilization(S, particles());
 }
 
@@ -182,7 +177,7 @@ void CorrespondenceModel::internal_force(const double* u, double* f) {
   const int d2 = dim_ * dim_;
   const std::size_t n = particles();
   const bool fused = F_.has_value();
-  if (fused) G_.apply_with_laplacian(u, H_.data(), lap_.data());
+  if (fused) F_->gradient_and_laplacian(u, H_.data(), lap_.data());
   else G_.apply(u, dim_, H_.data());
   const bool matrix_free = S_ && !S_assembled_ && !fused;
   if (matrix_free) S_->bond_terms(u, H_.data(), B_.data(), r_.data());
@@ -246,7 +241,7 @@ double CorrespondenceModel::energy(const double* u) {
       S_assembled_->apply_add(u, dim_, Su_.data());
     } else if (F_) {
       // S u = -lap(u) - G^T(T).
-      G_.apply_with_laplacian(u, H_.data(), lap_.data());
+      F_->gradient_and_laplacian(u, H_.data(), lap_.data());
       F_->tensor_terms(H_.data(), B_.data());
       G_.apply_transpose(B_.data(), dim_, Su_.data());
       for (std::size_t k = 0; k < Su_.size(); ++k) Su_[k] = -Su_[k] - lap_[k];

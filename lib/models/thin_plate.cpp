@@ -13,13 +13,12 @@ ThinPlateModel::ThinPlateModel(PlateCloud plate, const Families& families, const
   const PointCloud& c = plate_.cloud;
   const std::size_t n = c.size(), phys = plate_.physical;
   const BondWeights bw = bond_weights(c, families, opt.influence);
-  op_ = SecondOrderOperator(c, families, bw);
+  op_ = NonlocalOperator(c, families, bw, OperatorOptions{2, true});
   if (opt.stabilization > 0.0) {
     std::vector<double> area(n, 0.0);
     std::copy(plate_.area.begin(), plate_.area.end(), area.begin());
-    S_.emplace(c, bw, op_, second_order_stabilization_coefficients(c, op_, bw, opt.stabilization, D0_, area));
+    S_.emplace(c, op_, second_order_stabilization_coefficients(c, op_, opt.stabilization, D0_, area));
   }
-  t_bond_ = dual_support(families).bond;
   ghost_off_.assign(phys + 1, 0);
   for (const ParticleId m : plate_.image) ++ghost_off_[m + 1];
   for (std::size_t m = 0; m < phys; ++m) ghost_off_[m + 1] += ghost_off_[m];
@@ -42,8 +41,8 @@ void ThinPlateModel::extend(const double* w, std::vector<double>& ext) const {
 
 void ThinPlateModel::derivatives(const double* w) {
   extend(w, ext_);
-  op_.gradient(ext_.data(), 1, grad_.data());
-  op_.hessian(ext_.data(), 1, hess_.data());
+  op_.apply(ext_.data(), 1, grad_.data());
+  op_.apply(ext_.data(), 1, hess_.data(), Derivative::hessian);
 }
 
 void ThinPlateModel::moment(const double* k, double* M) const {
@@ -61,7 +60,7 @@ void ThinPlateModel::internal_force(const double* w, double* f) {
     const double A = plate_.area[i];
     Q_[i * 3] = A * M[0], Q_[i * 3 + 1] = 2.0 * A * M[1], Q_[i * 3 + 2] = A * M[2];
   }
-  op_.hessian_transpose(Q_.data(), 1, fe_.data());
+  op_.apply_transpose(Q_.data(), 1, fe_.data(), nullptr, Derivative::hessian);
   if (S_) S_->add_force(ext_.data(), grad_.data(), hess_.data(), fe_.data());
   std::copy(fe_.begin(), fe_.begin() + phys, f);
   for (std::size_t g = 0; g < plate_.image.size(); ++g) f[plate_.image[g]] += plate_.sign[g] * fe_[phys + g];
@@ -87,7 +86,8 @@ std::vector<double> ThinPlateModel::lumped_mass() const {
 
 void ThinPlateModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
   const std::size_t phys = plate_.physical;
-  const SecondOrderOperator& H = op_;
+  const NonlocalOperator& H = op_;
+  constexpr Derivative hessian = Derivative::hessian;
   auto physical_of = [&](ParticleId b, double& s) {
     if (static_cast<std::size_t>(b) < phys) return s = 1.0, b;
     const std::size_t g = b - phys;
@@ -111,19 +111,15 @@ void ThinPlateModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
         const std::size_t a = q < 0 ? r : static_cast<std::size_t>(ghost_list_[ghost_off_[r] + q]);
         sa = q < 0 ? 1.0 : plate_.sign[a - phys];
         // Bending: K_ab = sum_i A_i h_ia . Dm h_ib over the centres i that see a.
-        auto centre = [&](std::size_t i, const double* h_ia) {
+        // (visit_column gives the centre a itself first, with its diagonal.)
+        H.visit_column(a, [&](ParticleId i, const double* h_ia) {
+          if (static_cast<std::size_t>(i) >= phys) return;
           double v[3];
           moment(h_ia, v);
           v[1] *= 2.0;
           for (double& x : v) x *= plate_.area[i];
-          add(static_cast<ParticleId>(i), dot3(v, H.hessian_diagonal(i)));
-          for (Offset k = H.offsets()[i]; k < H.offsets()[i + 1]; ++k) add(H.cols()[k], dot3(v, H.hessian_weight(k)));
-        };
-        if (a < phys) centre(a, H.hessian_diagonal(a));
-        for (Offset t = H.dual_offsets()[a]; t < H.dual_offsets()[a + 1]; ++t) {
-          const std::size_t i = H.dual_cols()[t];
-          if (i < phys) centre(i, H.hessian_weight(t_bond_[t]));
-        }
+          H.visit_row(i, [&](ParticleId j, const double* h_ij) { add(j, dot3(v, h_ij)); }, hessian);
+        }, hessian);
         if (S_) S_->add_row(a, add);
       }
       acc.finish();
@@ -146,7 +142,7 @@ std::vector<double> ThinPlateModel::stiffness_row_sums() const {
 void ThinPlateModel::curvature(const double* w, double* kappa) const {
   std::vector<double> ext(plate_.cloud.size()), hess(plate_.cloud.size() * 3);
   extend(w, ext);
-  op_.hessian(ext.data(), 1, hess.data());
+  op_.apply(ext.data(), 1, hess.data(), Derivative::hessian);
   std::copy(hess.begin(), hess.begin() + plate_.physical * 3, kappa);
 }
 
@@ -164,7 +160,7 @@ std::vector<std::pair<std::string, std::size_t>> ThinPlateModel::memory() const 
   if (S_) m.emplace_back("plate stabilization", S_->memory_bytes());
   m.emplace_back("workspaces (w, grad, kappa, M)",
                  (ext_.size() + grad_.size() + hess_.size() + Q_.size() + fe_.size()) * sizeof(double) +
-                     (t_bond_.size() + ghost_off_.size()) * sizeof(Offset));
+                     ghost_off_.size() * sizeof(Offset));
   return m;
 }
 

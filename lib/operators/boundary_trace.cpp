@@ -2,7 +2,7 @@
 
 namespace perinom {
 
-BoundaryTrace::BoundaryTrace(BoundaryFacets facets, const PointCloud& cloud, const GradientOperator& G)
+BoundaryTrace::BoundaryTrace(BoundaryFacets facets, const PointCloud& cloud, const NonlocalOperator& G)
     : facets_(std::move(facets)) {
   const int d = cloud.dim;
   for (std::size_t k = 0; k < facets_.size(); ++k) {
@@ -10,14 +10,14 @@ BoundaryTrace::BoundaryTrace(BoundaryFacets facets, const PointCloud& cloud, con
     double r[3] = {0, 0, 0};
     for (int a = 0; a < d; ++a) r[a] = facets_.centroid[k * d + a] - cloud.x[p * d + a];
     double self = 1.0;
-    for (Offset m = G.offsets()[p]; m < G.offsets()[p + 1]; ++m) {
-      const auto g = G.weight(m);
+    G.visit_row(p, [&](ParticleId j, const double* g) {
+      if (static_cast<std::size_t>(j) == p) return;  // the diagonal: self, below
       double c = 0.0;
       for (int a = 0; a < d; ++a) c += g[a] * r[a];
-      cols_.push_back(G.cols()[m]);
+      cols_.push_back(j);
       coef_.push_back(c);
       self -= c;
-    }
+    });
     cols_.push_back(static_cast<ParticleId>(p));
     coef_.push_back(self);
     offsets_.push_back(static_cast<Offset>(cols_.size()));

@@ -5,6 +5,7 @@
 
 #include "perinom/core/parallel.hpp"
 #include "perinom/core/thread_governor.hpp"
+#include "operator_access.hpp"
 
 namespace perinom {
 namespace {
@@ -13,7 +14,7 @@ namespace {
 class ConstraintOperator {
  public:
   ConstraintOperator(const PointCloud& cloud, const Families& families, const BondWeights& weights,
-                     const GradientOperator& G1)
+                     const NonlocalOperator& G1)
       : cloud_(cloud), families_(families), weights_(weights), G1_(G1), dual_(dual_support(families)),
         a_(cloud.size() * cloud.dim), delta_(families.bonds()), rowsum_(cloud.size()) {}
 
@@ -71,7 +72,7 @@ class ConstraintOperator {
   const PointCloud& cloud_;
   const Families& families_;
   const BondWeights& weights_;
-  const GradientOperator& G1_;
+  const NonlocalOperator& G1_;
   DualSupport dual_;
   std::vector<double> a_, delta_, rowsum_;
 };
@@ -114,11 +115,14 @@ void project_out(const std::vector<std::vector<double>>& null, std::vector<doubl
 }  // namespace
 
 std::vector<double> consistent_gradient_weights(const PointCloud& cloud, const Families& families,
-                                                const BondWeights& weights, const GradientOperator& G1,
-                                                const std::vector<double>& g, const std::vector<double>& c,
+                                                const BondWeights& weights, const NonlocalOperator& G1,
+                                                const NonlocalOperator& G, const std::vector<double>& c,
                                                 const ConsistencyOptions& options, ConsistencyReport* report) {
   const int d = cloud.dim;
   const std::size_t n = cloud.size();
+  std::vector<double> g(families.bonds() * d);
+  for (std::size_t k = 0; k < families.bonds(); ++k)
+    for (int b = 0; b < d; ++b) g[k * d + b] = OperatorAccess::weight(G, static_cast<Offset>(k), b);
   ConstraintOperator L(cloud, families, weights, G1);
   const auto null = null_space(cloud);
   const std::vector<double> diag = L.diagonal();

@@ -1,5 +1,5 @@
 #pragma once
-// The row kernels of the gradient operator's three products (internal to lib/operators).
+// The row kernels of the nonlocal operator's products (internal to lib/operators).
 // Every product is a gather: row i is summed by one thread in a fixed order, so results
 // do not depend on the thread count. W is the stored weight type (double, or float for
 // the single-precision weight option); the arithmetic is always double.
@@ -7,7 +7,9 @@
 // The hot case, nc = d (the displacement gradient and the internal force), has kernels on
 // short vectors (GCC/Clang vector extensions: 4 doubles in 3-D with a zero fourth lane, 2
 // in 2-D), so one bond costs three (two) vector multiply-adds instead of nine (four) scalar
-// ones; the generic kernels serve every other component count.
+// ones. The templated kernels serve the other common counts (M weights per bond, NC
+// components, a field stride), and the *_any kernels any count at all (one pass over the
+// row per component).
 #include <cstddef>
 
 #include "perinom/core/types.hpp"
@@ -24,16 +26,16 @@ inline v4 load3(const double* p) { return v4{p[0], p[1], p[2], 0.0}; }
 template <class W>
 inline v4 load3(const W* p) { return v4{double(p[0]), double(p[1]), double(p[2]), 0.0}; }
 
-/// out[(i*NC + c)*D + b] = sum_j (f_j[c] - f_i[c]) g_ij[b].
+/// out[(i*NC + c)*D + b] = sum_j (f_j[c] - f_i[c]) g_ij[b], f_i[c] = f[i*stride + c].
 template <int D, int NC, class W>
 void gradient(std::size_t n, const Offset* off, const ParticleId* col, const W* w, const double* f,
-              double* out) {
+              double* out, std::size_t stride = NC) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     double acc[NC][D] = {};
-    const double* fi = f + i * NC;
+    const double* fi = f + i * stride;
     for (Offset k = off[i]; k < off[i + 1]; ++k) {
-      const double* fj = f + static_cast<std::size_t>(col[k]) * NC;
+      const double* fj = f + static_cast<std::size_t>(col[k]) * stride;
       const W* g = w + k * D;
       for (int c = 0; c < NC; ++c) {
         const double diff = fj[c] - fi[c];
@@ -94,11 +96,11 @@ void gradient2(std::size_t n, const Offset* off, const ParticleId* col, const W*
   }
 }
 
-/// out[i*NC + c] = sum_b diag_i[b] q_i[c][b] + sum_{m : i in H_m} g_mi[b] q_m[c][b], over the
-/// dual-support rows (off, col, w hold g_mi in dual order).
+/// out[i*stride + c] = sum_b diag_i[b] q_i[c][b] + sum_{m : i in H_m} g_mi[b] q_m[c][b], over
+/// the dual-support rows (off, col, w hold g_mi in dual order).
 template <int D, int NC, class W>
 void transpose(std::size_t n, const ParticleId* rows, const Offset* off, const ParticleId* col,
-               const W* w, const double* diag, const double* q, double* out) {
+               const W* w, const double* diag, const double* q, double* out, std::size_t stride = NC) {
 #pragma omp parallel for schedule(static)
   for (std::size_t r = 0; r < n; ++r) {
     const std::size_t i = row_of(rows, r);
@@ -112,7 +114,7 @@ void transpose(std::size_t n, const ParticleId* rows, const Offset* off, const P
       for (int c = 0; c < NC; ++c)
         for (int b = 0; b < D; ++b) acc[c] += double(g[b]) * qm[c * D + b];
     }
-    for (int c = 0; c < NC; ++c) out[i * NC + c] = acc[c];
+    for (int c = 0; c < NC; ++c) out[i * stride + c] = acc[c];
   }
 }
 
@@ -160,10 +162,10 @@ void transpose2(std::size_t n, const ParticleId* rows, const Offset* off, const 
   }
 }
 
-/// out[i*NC + c] = sum_j sum_b (q_j - q_i)[c][b] g_ij[b] (the nonlocal divergence).
+/// out[i*stride + c] = sum_j sum_b (q_j - q_i)[c][b] g_ij[b] (the nonlocal divergence).
 template <int D, int NC, class W>
 void divergence(std::size_t n, const ParticleId* rows, const Offset* off, const ParticleId* col,
-                const W* w, const double* q, double* out) {
+                const W* w, const double* q, double* out, std::size_t stride = NC) {
 #pragma omp parallel for schedule(static)
   for (std::size_t r = 0; r < n; ++r) {
     const std::size_t i = row_of(rows, r);
@@ -175,7 +177,63 @@ void divergence(std::size_t n, const ParticleId* rows, const Offset* off, const 
       for (int c = 0; c < NC; ++c)
         for (int b = 0; b < D; ++b) acc[c] += (qj[c * D + b] - qi[c * D + b]) * double(g[b]);
     }
-    for (int c = 0; c < NC; ++c) out[i * NC + c] = acc[c];
+    for (int c = 0; c < NC; ++c) out[i * stride + c] = acc[c];
+  }
+}
+
+/// gradient<D, NC> for any nc: one pass over the row per component.
+template <int D, class W>
+void gradient_any(std::size_t n, const Offset* off, const ParticleId* col, const W* w, const double* f,
+                  int nc, std::size_t stride, double* out) {
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < nc; ++c) {
+      double acc[D] = {};
+      const double fi = f[i * stride + c];
+      for (Offset k = off[i]; k < off[i + 1]; ++k) {
+        const double diff = f[static_cast<std::size_t>(col[k]) * stride + c] - fi;
+        for (int b = 0; b < D; ++b) acc[b] += diff * double(w[k * D + b]);
+      }
+      for (int b = 0; b < D; ++b) out[(i * nc + c) * D + b] = acc[b];
+    }
+}
+
+/// transpose<D, NC> for any nc.
+template <int D, class W>
+void transpose_any(std::size_t n, const ParticleId* rows, const Offset* off, const ParticleId* col,
+                   const W* w, const double* diag, const double* q, int nc, std::size_t stride, double* out) {
+#pragma omp parallel for schedule(static)
+  for (std::size_t r = 0; r < n; ++r) {
+    const std::size_t i = row_of(rows, r);
+    for (int c = 0; c < nc; ++c) {
+      double acc = 0.0;
+      const double* qi = q + (i * nc + c) * D;
+      for (int b = 0; b < D; ++b) acc += diag[i * D + b] * qi[b];
+      for (Offset k = off[i]; k < off[i + 1]; ++k) {
+        const double* qm = q + (static_cast<std::size_t>(col[k]) * nc + c) * D;
+        for (int b = 0; b < D; ++b) acc += double(w[k * D + b]) * qm[b];
+      }
+      out[i * stride + c] = acc;
+    }
+  }
+}
+
+/// divergence<D, NC> for any nc.
+template <int D, class W>
+void divergence_any(std::size_t n, const ParticleId* rows, const Offset* off, const ParticleId* col,
+                    const W* w, const double* q, int nc, std::size_t stride, double* out) {
+#pragma omp parallel for schedule(static)
+  for (std::size_t r = 0; r < n; ++r) {
+    const std::size_t i = row_of(rows, r);
+    for (int c = 0; c < nc; ++c) {
+      double acc = 0.0;
+      const double* qi = q + (i * nc + c) * D;
+      for (Offset k = off[i]; k < off[i + 1]; ++k) {
+        const double* qj = q + (static_cast<std::size_t>(col[k]) * nc + c) * D;
+        for (int b = 0; b < D; ++b) acc += (qj[b] - qi[b]) * double(w[k * D + b]);
+      }
+      out[i * stride + c] = acc;
+    }
   }
 }
 

@@ -1,6 +1,7 @@
 #include "perinom/operators/scalar_csr.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace perinom {
 namespace {
@@ -69,6 +70,35 @@ ScalarCsr assemble_rows(std::size_t n, const std::function<void(std::size_t, Row
     A.values.insert(A.values.end(), row_vals[r].begin(), row_vals[r].end());
   }
   return A;
+}
+
+void reassemble_rows(ScalarCsr& A, const std::vector<ParticleId>& rows,
+                     const std::function<void(std::size_t, RowAccumulator&)>& add_row) {
+  bool outside = false;
+#pragma omp parallel if (rows.size() > 64)
+  {
+    RowAccumulator acc(A.rows(), 1);
+#pragma omp for schedule(dynamic, 16) reduction(|| : outside)
+    for (std::size_t q = 0; q < rows.size(); ++q) {
+      const std::size_t r = rows[q];
+      add_row(r, acc);
+      acc.finish();
+      const auto first = A.cols.begin() + A.offsets[r], last = A.cols.begin() + A.offsets[r + 1];
+      std::fill(A.values.begin() + A.offsets[r], A.values.begin() + A.offsets[r + 1], 0.0);
+      // Both rows are sorted: one merge.
+      auto it = first;
+      for (std::size_t k = 0; k < acc.cols().size(); ++k) {
+        it = std::lower_bound(it, last, acc.cols()[k]);
+        if (it == last || *it != acc.cols()[k]) {
+          outside = outside || *acc.block(k) != 0.0;
+          continue;
+        }
+        A.values[it - A.cols.begin()] = *acc.block(k);
+      }
+      acc.clear();
+    }
+  }
+  if (outside) throw std::logic_error("reassemble_rows: a refreshed row has an entry outside the stored pattern");
 }
 
 }  // namespace perinom

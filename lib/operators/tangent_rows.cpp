@@ -1,25 +1,24 @@
 #include "perinom/operators/tangent_rows.hpp"
 
+#include "operator_access.hpp"
 #include "perinom/operators/row_accumulator.hpp"
 
 namespace perinom {
 
 void for_each_tangent_row(
-    const GradientOperator& G, const PointwiseTangent& tangent, const Stabilization* S,
+    const NonlocalOperator& G, const PointwiseTangent& tangent, const Stabilization* S,
     const std::function<void(std::size_t, const std::vector<ParticleId>&,
                              const std::vector<double>&)>& visit,
     const StrongRows* strong, const ScalarCsr* S0, const double* local) {
   const int d = G.dim(), d2 = d * d, d3 = d2 * d;
   const std::size_t n = G.rows();
-  const auto& off = G.offsets();
-  const auto& cols = G.cols();
-  const auto& toff = G.dual_offsets();
-  const auto& tcols = G.dual_cols();
+  const BondGraph& g = G.graph();
+  using A = OperatorAccess;
 #pragma omp parallel
   {
     RowAccumulator acc(n, d2);
     std::vector<double> T(d3), blocks;
-    double coef[3];
+    double coef[3], scratch[3];
     // Adds sum_e T[a c e] G_e[m][j] for j in {m} + H_m: a dependence on u through grad u
     // at m.
     auto add_gradient_columns = [&](std::size_t m, const double* T) {
@@ -31,8 +30,9 @@ void for_each_tangent_row(
           K[ac] += s;
         }
       };
-      add_column(static_cast<ParticleId>(m), G.diagonal(m));
-      for (Offset k = off[m]; k < off[m + 1]; ++k) add_column(cols[k], G.weight(k).data());
+      add_column(static_cast<ParticleId>(m), A::diagonal(G, m));
+      for (Offset k = g.begin(m); k < g.end(m); ++k)
+        if (g.alive(k)) add_column(g.col(k), A::weights(G, k, scratch));
     };
     // Adds sum_b coef[b] C_m[a b c e] G_e[m][j] for j in {m} + H_m: the row's dependence
     // on u through the stress P_m, weighted by coef (a d-vector, volume included).
@@ -52,18 +52,20 @@ void for_each_tangent_row(
       if (strong && strong->in_band[i]) {
         const double vi = tangent.volume[i];
         const double* mi = strong->normal_over_h + i * d;
-        for (int b = 0; b < d; ++b) coef[b] = -vi * G.diagonal(i)[b] + vi * mi[b];
+        for (int b = 0; b < d; ++b) coef[b] = -vi * A::diagonal(G, i)[b] + vi * mi[b];
         add_source(i, coef);
-        for (Offset k = off[i]; k < off[i + 1]; ++k) {
-          for (int b = 0; b < d; ++b) coef[b] = -vi * G.weight(k)[b];
-          add_source(cols[k], coef);
+        for (Offset k = g.begin(i); k < g.end(i); ++k) {
+          if (!g.alive(k)) continue;
+          for (int b = 0; b < d; ++b) coef[b] = -vi * A::weight(G, k, b);
+          add_source(g.col(k), coef);
         }
       } else {
-        for (int b = 0; b < d; ++b) coef[b] = tangent.volume[i] * G.diagonal(i)[b];
+        for (int b = 0; b < d; ++b) coef[b] = tangent.volume[i] * A::diagonal(G, i)[b];
         add_source(i, coef);
-        for (Offset t = toff[i]; t < toff[i + 1]; ++t) {
-          const std::size_t m = tcols[t];
-          for (int b = 0; b < d; ++b) coef[b] = tangent.volume[m] * G.dual_weight(t)[b];
+        for (Offset t = g.dual_begin(i); t < g.dual_end(i); ++t) {
+          if (!g.dual_alive(t)) continue;
+          const std::size_t m = g.dual_col(t);
+          for (int b = 0; b < d; ++b) coef[b] = tangent.volume[m] * A::dual_weight(G, t, b);
           add_source(m, coef);
         }
       }

@@ -116,7 +116,7 @@ Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, 
 }
 
 void couple_to_faces(Loading& load, const FaceOf& face_of, const BoxGeometry& box, const PointCloud& cloud,
-                     const GradientOperator& G, const BoundaryData& data) {
+                     const NonlocalOperator& G, const BoundaryData& data) {
   const int d = cloud.dim;
   const BoundaryTrace* trace = data.trace && !data.trace->empty() ? data.trace : nullptr;
   std::map<std::pair<std::int64_t, int>, std::size_t> facet_of;  // (particle, side code) -> facet
@@ -150,13 +150,14 @@ void couple_to_faces(Loading& load, const FaceOf& face_of, const BoxGeometry& bo
           for (int b = 0; b < d; ++b) r[b] = data.facets->centroid[facet * d + b] - cloud.x[i * d + b];
         else
           r[axis] = (it->second.side.at_max ? box.max[axis] : box.min[axis]) - cloud.x[i * d + axis];
-        for (Offset m = G.offsets()[i]; m < G.offsets()[i + 1]; ++m) {
+        G.visit_row(i, [&](ParticleId j, const double* g) {
+          if (static_cast<std::size_t>(j) == i) return;  // the diagonal: self
           double c = 0.0;
-          for (int b = 0; b < d; ++b) c += G.weight(m)[b] * r[b];
-          load.coupled.push_back(static_cast<std::int64_t>(G.cols()[m]) * d + a);
+          for (int b = 0; b < d; ++b) c += g[b] * r[b];
+          load.coupled.push_back(static_cast<std::int64_t>(j) * d + a);
           load.coef.push_back(c);
           self -= c;
-        }
+        });
       }
     }
     load.scale.push_back(1.0 / self);

@@ -9,7 +9,7 @@
 #include "perinom/geometry/body.hpp"
 #include "perinom/models/loading.hpp"
 #include "perinom/operators/boundary_trace.hpp"
-#include "perinom/operators/gradient_operator.hpp"
+#include "perinom/operators/nonlocal_operator.hpp"
 #include "perinom/scene/scene.hpp"
 
 namespace perinom::detail {
@@ -44,6 +44,6 @@ Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, 
 /// facet load acts. Without one, a group's constraint acts at its facet's centroid and a side's
 /// on the box face along the side's axis.
 void couple_to_faces(Loading& load, const FaceOf& face_of, const BoxGeometry& box, const PointCloud& cloud,
-                     const GradientOperator& G, const BoundaryData& data);
+                     const NonlocalOperator& G, const BoundaryData& data);
 
 }  // namespace perinom::detail

@@ -4,7 +4,7 @@
 
 #include "perinom/geometry/lattice.hpp"
 #include "perinom/neighbors/search.hpp"
-#include "perinom/operators/gradient_operator.hpp"
+#include "perinom/operators/nonlocal_operator.hpp"
 
 int main() {
   using namespace perinom;
@@ -13,7 +13,7 @@ int main() {
   box.max = {1.0, 1.0, 0.0};
   const PointCloud cloud = make_lattice(box, 0.1);
   const Families families = radius_families(cloud, 0.3015);
-  const GradientOperator G(cloud, families, bond_weights(cloud, families, Influence::constant));
+  const NonlocalOperator G(cloud, families, bond_weights(cloud, families, Influence::constant));
   std::vector<double> f(cloud.size()), grad(cloud.size() * 2);
   for (std::size_t i = 0; i < cloud.size(); ++i) f[i] = 2.0 * cloud.x[2 * i] - cloud.x[2 * i + 1];
   G.apply(f.data(), 1, grad.data());

@@ -2,14 +2,14 @@
 
 #include "../support/clouds.hpp"
 #include "perinom/neighbors/search.hpp"
-#include "perinom/operators/gradient_operator.hpp"
+#include "perinom/operators/nonlocal_operator.hpp"
 
 using namespace perinom;
 
 namespace {
 
-GradientOperator make_G(const PointCloud& c, const Families& f, Influence w) {
-  return GradientOperator(c, f, bond_weights(c, f, w));
+NonlocalOperator make_G(const PointCloud& c, const Families& f, Influence w) {
+  return NonlocalOperator(c, f, bond_weights(c, f, w));
 }
 
 }  // namespace
@@ -21,7 +21,7 @@ TEST_CASE("the gradient is exact for linear fields on jittered clouds, boundarie
     for (bool knn : {false, true}) {
       const Families f = knn ? knn_families(c, dim == 2 ? 14 : 33) : radius_families(c, 3.015);
       for (Influence w : {Influence::constant, Influence::inverse_square, Influence::gaussian}) {
-        const GradientOperator G = make_G(c, f, w);
+        const NonlocalOperator G = make_G(c, f, w);
         // u_a(x) = B_ab x_b + c_a with a full, non-symmetric B.
         const std::vector<double> B = test::random_field(dim * dim, 1.0, 5);
         std::vector<double> u(c.size() * dim), H(c.size() * dim * dim);
@@ -46,7 +46,7 @@ TEST_CASE("the transposed product is the adjoint of the gradient product", "[ope
     const PointCloud c = test::lattice(dim, dim == 2 ? 12 : 6, 0.3);
     for (bool knn : {false, true}) {
       const Families f = knn ? knn_families(c, dim == 2 ? 9 : 20) : radius_families(c, 2.015);
-      const GradientOperator G = make_G(c, f, Influence::inverse_square);
+      const NonlocalOperator G = make_G(c, f, Influence::inverse_square);
       for (int nc : {1, dim}) {
         const auto u = test::random_field(c.size() * nc, 1.0, 1);
         const auto q = test::random_field(c.size() * nc * dim, 1.0, 2);
@@ -67,7 +67,7 @@ TEST_CASE("the transposed product equals the explicit dual-support sum for k-nea
   const PointCloud c = test::lattice(2, 12, 0.45);
   const Families f = knn_families(c, 11);
   const BondWeights bw = bond_weights(c, f, Influence::inverse_distance);
-  const GradientOperator G(c, f, bw);
+  const NonlocalOperator G(c, f, bw);
   const int d = 2;
   const auto q = test::random_field(c.size() * d, 1.0, 9);  // nc = 1
   std::vector<double> out(c.size());
@@ -103,7 +103,7 @@ TEST_CASE("single-precision weights: constants exact, linear fields to float rou
     const PointCloud c = test::lattice(dim, dim == 2 ? 14 : 7, 0.4);
     const Families f = radius_families(c, 3.015);
     const BondWeights bw = bond_weights(c, f, Influence::inverse_square);
-    const GradientOperator G64(c, f, bw), G32(c, f, bw, WeightPrecision::float32);
+    const NonlocalOperator G64(c, f, bw), G32(c, f, bw, OperatorOptions{1, false, WeightPrecision::float32});
     REQUIRE(G32.precision() == WeightPrecision::float32);
     CHECK(G32.memory_bytes() < G64.memory_bytes());
     const std::vector<double> B = test::random_field(dim * dim, 1.0, 5);

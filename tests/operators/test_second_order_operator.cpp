@@ -8,9 +8,13 @@
 #include "../support/clouds.hpp"
 #include "perinom/core/error.hpp"
 #include "perinom/neighbors/search.hpp"
-#include "perinom/operators/second_order_operator.hpp"
+#include "perinom/operators/nonlocal_operator.hpp"
 
 using namespace perinom;
+
+namespace {
+const OperatorOptions second_order{2, true};  // the gradient and the Hessian
+}  // namespace
 
 namespace {
 
@@ -109,7 +113,7 @@ TEST_CASE("the second-order gradient and Hessian are exact for quadratic fields 
         const int k = family == 1 ? (dim == 2 ? 9 : 22) : (dim == 2 ? 14 : 33);
         const Families f = family == 0 ? radius_families(c, 3.015) : knn_families(c, k);
         for (Influence w : {Influence::constant, Influence::inverse_square, Influence::gaussian}) {
-          const SecondOrderOperator D(c, f, bond_weights(c, f, w));
+          const NonlocalOperator D(c, f, bond_weights(c, f, w), second_order);
           REQUIRE(D.has_hessian());
           REQUIRE(D.hessian_terms() == m);
           for (int nc : {1, dim}) {
@@ -117,8 +121,8 @@ TEST_CASE("the second-order gradient and Hessian are exact for quadratic fields 
             std::vector<double> u(c.size() * nc), G(c.size() * nc * dim), H(c.size() * nc * m);
             for (std::size_t i = 0; i < c.size(); ++i)
               for (int a = 0; a < nc; ++a) u[i * nc + a] = q.value(a, c.point(i));
-            D.gradient(u.data(), nc, G.data());
-            D.hessian(u.data(), nc, H.data());
+            D.apply(u.data(), nc, G.data());
+            D.apply(u.data(), nc, H.data(), Derivative::hessian);
             Errors eg, eh;
             for (std::size_t i = 0; i < c.size(); ++i) {
               const bool edge = near_boundary(c, i, n);
@@ -149,16 +153,19 @@ TEST_CASE("the weights are the quadratic fit K p w V of every family", "[operato
     const PointCloud c = test::lattice(dim, dim == 2 ? 10 : 5, 0.45);
     const Families f = knn_families(c, dim == 2 ? 11 : 24);
     const BondWeights bw = bond_weights(c, f, Influence::inverse_square);
-    const SecondOrderOperator D(c, f, bw);
+    const NonlocalOperator D(c, f, bw, second_order);
     double worst = 0.0;
     for (std::size_t i = 0; i < c.size(); ++i) {
       const Eigen::MatrixXd W = fit_weights(c, f, bw, i);
-      for (Offset k = f.begin(i); k < f.end(i); ++k) {
-        const Eigen::Index col = k - f.begin(i);
-        for (int b = 0; b < dim; ++b)
-          worst = std::max(worst, std::abs(D.gradient_weight(k)[b] - W(b, col)) / W.col(col).norm());
-        for (int s = 0; s < terms(dim); ++s)
-          worst = std::max(worst, std::abs(D.hessian_weight(k)[s] - W(dim + s, col)) / W.col(col).norm());
+      for (const Derivative which : {Derivative::gradient, Derivative::hessian}) {
+        const int row0 = which == Derivative::gradient ? 0 : dim;
+        Eigen::Index col = 0;
+        D.visit_row(i, [&](ParticleId j, const double* a) {
+          if (static_cast<std::size_t>(j) == i) return;  // the diagonal
+          for (int r = 0; r < D.weights_per_bond(which); ++r)
+            worst = std::max(worst, std::abs(a[r] - W(row0 + r, col)) / W.col(col).norm());
+          ++col;
+        }, which);
       }
     }
     INFO("dim " << dim);
@@ -172,7 +179,7 @@ TEST_CASE("the transposed products equal the explicit dual-support sums for k-ne
     const PointCloud c = test::lattice(dim, dim == 2 ? 12 : 6, 0.45);
     const Families f = knn_families(c, dim == 2 ? 9 : 20);
     const BondWeights bw = bond_weights(c, f, Influence::inverse_distance);
-    const SecondOrderOperator D(c, f, bw);
+    const NonlocalOperator D(c, f, bw, second_order);
     const std::size_t N = c.size();
     const int m = terms(dim), nb = dim + m;
     std::vector<Eigen::MatrixXd> W(N);
@@ -186,8 +193,8 @@ TEST_CASE("the transposed products equal the explicit dual-support sums for k-ne
       for (int s = 0; s < m; ++s) qh[i * m + s] = q[i * nb + dim + s];
     }
     std::vector<double> outg(N), outh(N);
-    D.gradient_transpose(qg.data(), 1, outg.data());
-    D.hessian_transpose(qh.data(), 1, outh.data());
+    D.apply_transpose(qg.data(), 1, outg.data());
+    D.apply_transpose(qh.data(), 1, outh.data(), nullptr, Derivative::hessian);
 
     // out_i = sum_{l in H'_i} w_li . q_l - sum_{j in H_i} w_ij . q_i, with the dual-support
     // H'_i = { l : i in H_l } found by searching every family for i.
@@ -223,15 +230,15 @@ TEST_CASE("the transposed products are the adjoints of the gradient and Hessian 
     const PointCloud c = test::lattice(dim, dim == 2 ? 12 : 6, 0.3);
     for (bool knn : {false, true}) {
       const Families f = knn ? knn_families(c, dim == 2 ? 12 : 26) : radius_families(c, 2.515);
-      const SecondOrderOperator D(c, f, bond_weights(c, f, Influence::inverse_square));
+      const NonlocalOperator D(c, f, bond_weights(c, f, Influence::inverse_square), second_order);
       for (int nc : {1, dim}) {
         for (bool hess : {false, true}) {
           const int m = hess ? D.hessian_terms() : dim;
           const auto u = test::random_field(c.size() * nc, 1.0, 1);
           const auto q = test::random_field(c.size() * nc * m, 1.0, 2);
           std::vector<double> Du(q.size()), Dtq(u.size());
-          if (hess) D.hessian(u.data(), nc, Du.data()), D.hessian_transpose(q.data(), nc, Dtq.data());
-          else D.gradient(u.data(), nc, Du.data()), D.gradient_transpose(q.data(), nc, Dtq.data());
+          if (hess) D.apply(u.data(), nc, Du.data(), Derivative::hessian), D.apply_transpose(q.data(), nc, Dtq.data(), nullptr, Derivative::hessian);
+          else D.apply(u.data(), nc, Du.data()), D.apply_transpose(q.data(), nc, Dtq.data());
           double scale = 0.0;
           const double lhs = dot(Du, q, scale), rhs = dot(u, Dtq, scale);
           INFO("dim " << dim << (knn ? " knn" : " radius") << " nc " << nc << (hess ? " Hessian" : " gradient"));
@@ -246,12 +253,12 @@ TEST_CASE("transposed products restricted to some rows write only those rows",
           "[operators][second_order]") {
   const PointCloud c = test::lattice(2, 10, 0.3);
   const Families f = knn_families(c, 12);
-  const SecondOrderOperator D(c, f, bond_weights(c, f, Influence::inverse_square));
+  const NonlocalOperator D(c, f, bond_weights(c, f, Influence::inverse_square), second_order);
   const auto q = test::random_field(c.size() * 3, 1.0, 4);
   std::vector<double> all(c.size()), some(c.size(), -7.0);
   const std::vector<ParticleId> rows{0, 5, 42, 99};
-  D.hessian_transpose(q.data(), 1, all.data());
-  D.hessian_transpose(q.data(), 1, some.data(), &rows);
+  D.apply_transpose(q.data(), 1, all.data(), nullptr, Derivative::hessian);
+  D.apply_transpose(q.data(), 1, some.data(), &rows, Derivative::hessian);
   for (std::size_t i = 0; i < c.size(); ++i) {
     const bool listed = std::find(rows.begin(), rows.end(), ParticleId(i)) != rows.end();
     CHECK(some[i] == (listed ? all[i] : -7.0));
@@ -264,20 +271,20 @@ TEST_CASE("a gradient-only operator stores no Hessian weights and refuses the He
     const PointCloud c = test::lattice(dim, dim == 2 ? 12 : 6, 0.3);
     const Families f = knn_families(c, dim == 2 ? 14 : 33);
     const BondWeights bw = bond_weights(c, f, Influence::inverse_square);
-    SecondOrderOptions gradient_only;
+    OperatorOptions gradient_only = second_order;
     gradient_only.hessian = false;
-    const SecondOrderOperator full(c, f, bw), lean(c, f, bw, gradient_only);
+    const NonlocalOperator full(c, f, bw, second_order), lean(c, f, bw, gradient_only);
     CHECK_FALSE(lean.has_hessian());
     // Exactly the Hessian's share is missing: m weights per bond in both orders, m per particle.
     const std::size_t m = full.hessian_terms();
     CHECK(full.memory_bytes() - lean.memory_bytes() == (2 * f.bonds() + c.size()) * m * sizeof(double));
     const auto u = test::random_field(c.size(), 1.0, 5);
     std::vector<double> g_full(c.size() * dim), g_lean(c.size() * dim), H(c.size() * m);
-    full.gradient(u.data(), 1, g_full.data());
-    lean.gradient(u.data(), 1, g_lean.data());
+    full.apply(u.data(), 1, g_full.data());
+    lean.apply(u.data(), 1, g_lean.data());
     CHECK(std::memcmp(g_full.data(), g_lean.data(), g_full.size() * sizeof(double)) == 0);
-    CHECK_THROWS_AS(lean.hessian(u.data(), 1, H.data()), std::logic_error);
-    CHECK_THROWS_AS(lean.hessian_transpose(H.data(), 1, g_lean.data()), std::logic_error);
+    CHECK_THROWS_AS(lean.apply(u.data(), 1, H.data(), Derivative::hessian), std::logic_error);
+    CHECK_THROWS_AS(lean.apply_transpose(H.data(), 1, g_lean.data(), nullptr, Derivative::hessian), std::logic_error);
   }
 }
 
@@ -287,14 +294,14 @@ TEST_CASE("a family too small for a quadratic fit is reported with its particle"
   const PointCloud c = test::lattice(2, 6, 0.2);
   const Families f = knn_families(c, 4);
   const BondWeights bw = bond_weights(c, f, Influence::inverse_square);
-  CHECK_THROWS_AS(SecondOrderOperator(c, f, bw), InputError);
-  CHECK_THROWS_WITH(SecondOrderOperator(c, f, bw),
+  CHECK_THROWS_AS(NonlocalOperator(c, f, bw, second_order), InputError);
+  CHECK_THROWS_WITH(NonlocalOperator(c, f, bw, second_order),
                     Catch::Contains("particle 0") && Catch::Contains("second-order K is singular"));
   // Radius families of the 3 x 3 stencil hold a quadratic in the interior, but not at the
   // corner (3 neighbours): particle 0 is the first such.
   const PointCloud r = test::lattice(2, 6, 0.0);
   const Families stencil = radius_families(r, 1.5);
-  CHECK_THROWS_WITH(SecondOrderOperator(r, stencil, bond_weights(r, stencil, Influence::constant)),
+  CHECK_THROWS_WITH(NonlocalOperator(r, stencil, bond_weights(r, stencil, Influence::constant), second_order),
                     Catch::Contains("particle 0") && Catch::Contains("3 neighbours"));
 }
 
@@ -308,11 +315,11 @@ TEST_CASE("the second-order operators give the same bits on 1 and 2 threads",
   const int before = omp_get_max_threads();
   for (int t : {0, 1}) {
     omp_set_num_threads(t + 1);
-    const SecondOrderOperator D(c, f, bw);
+    const NonlocalOperator D(c, f, bw, second_order);
     H[t].resize(c.size() * 6);
     T[t].resize(c.size());
-    D.hessian(u.data(), 1, H[t].data());
-    D.hessian_transpose(H[t].data(), 1, T[t].data());
+    D.apply(u.data(), 1, H[t].data(), Derivative::hessian);
+    D.apply_transpose(H[t].data(), 1, T[t].data(), nullptr, Derivative::hessian);
   }
   omp_set_num_threads(before);
   CHECK(std::memcmp(H[0].data(), H[1].data(), H[0].size() * sizeof(double)) == 0);

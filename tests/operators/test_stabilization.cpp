@@ -15,7 +15,7 @@ struct Setup {
   PointCloud cloud;
   Families families;
   BondWeights weights;
-  GradientOperator G;
+  NonlocalOperator G;
   std::vector<double> c;
   std::unique_ptr<Stabilization> op;  // refers to G: built in place, never moved
   ScalarCsr S;
@@ -25,9 +25,9 @@ void make(Setup& s, int dim, int n, bool knn) {
   s.cloud = test::lattice(dim, n, 0.35);
   s.families = knn ? knn_families(s.cloud, dim == 2 ? 12 : 30) : radius_families(s.cloud, 2.015);
   s.weights = bond_weights(s.cloud, s.families, Influence::inverse_square);
-  s.G = GradientOperator(s.cloud, s.families, s.weights);
-  s.c = stabilization_coefficients(s.weights, dim, 0.5, 1.0);
-  s.op = std::make_unique<Stabilization>(s.cloud, s.families, s.weights, s.G, s.c);
+  s.G = NonlocalOperator(s.cloud, s.families, s.weights);
+  s.c = stabilization_coefficients(s.G, 0.5, 1.0);
+  s.op = std::make_unique<Stabilization>(s.cloud, s.G, 0.5 * 2.0 * 1.0);
   s.S = assemble_stabilization(*s.op, s.cloud.size());
 }
 

@@ -9,7 +9,7 @@
 // same for the gradient. Both are reported over all particles, over the interior (particles
 // whose family's disc of radius delta_i lies inside the square, so the fit is not one-sided)
 // and over the boundary band (the rest). For comparison, the first-order gradient
-// (GradientOperator, THEORY sec. 2) of the same families and weights is measured too.
+// (NonlocalOperator of order 1, THEORY sec. 2) of the same families and weights is measured too.
 //
 // Run (verification/hessian_accuracy/hessian_accuracy.py does, and plots):
 //   hessian_accuracy sweep 20,40,60 14          one CSV row per (n, k), on stdout
@@ -27,8 +27,7 @@
 #include "perinom/core/error.hpp"
 #include "perinom/geometry/lattice.hpp"
 #include "perinom/neighbors/search.hpp"
-#include "perinom/operators/gradient_operator.hpp"
-#include "perinom/operators/second_order_operator.hpp"
+#include "perinom/operators/nonlocal_operator.hpp"
 
 using namespace perinom;
 
@@ -98,7 +97,7 @@ std::vector<int> parse_list(const std::string& s) {
 struct Case {
   PointCloud cloud;
   Families families;
-  SecondOrderOperator D;
+  NonlocalOperator D;
   std::vector<double> w, grad, hess, grad1;  // grad1: the first-order gradient
   double t_search = 0, t_assembly = 0, t_gradient = 0, t_hessian = 0;
 };
@@ -118,9 +117,9 @@ Case run_case(int n, int k, Influence influence) {
   c.t_search = seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
   const BondWeights bw = bond_weights(c.cloud, c.families, influence);
-  c.D = SecondOrderOperator(c.cloud, c.families, bw);
+  c.D = NonlocalOperator(c.cloud, c.families, bw, OperatorOptions{2, true});
   c.t_assembly = seconds_since(t0);
-  const GradientOperator G(c.cloud, c.families, bw);  // the first-order gradient, to compare
+  const NonlocalOperator G(c.cloud, c.families, bw);  // the first-order gradient, to compare
   // 3. The field at the particles, and its nonlocal gradient and Hessian.
   const std::size_t N = c.cloud.size();
   c.w.resize(N);
@@ -129,8 +128,8 @@ Case run_case(int n, int k, Influence influence) {
   c.hess.resize(3 * N);
   c.grad1.resize(2 * N);
   G.apply(c.w.data(), 1, c.grad1.data());
-  c.t_gradient = best_of(20, [&] { c.D.gradient(c.w.data(), 1, c.grad.data()); });
-  c.t_hessian = best_of(20, [&] { c.D.hessian(c.w.data(), 1, c.hess.data()); });
+  c.t_gradient = best_of(20, [&] { c.D.apply(c.w.data(), 1, c.grad.data()); });
+  c.t_hessian = best_of(20, [&] { c.D.apply(c.w.data(), 1, c.hess.data(), Derivative::hessian); });
   return c;
 }
 

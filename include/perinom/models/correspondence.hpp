@@ -31,7 +31,7 @@
 #include "perinom/neighbors/families.hpp"
 #include "perinom/operators/boundary_trace.hpp"
 #include "perinom/operators/consistent_gradient.hpp"
-#include "perinom/operators/gradient_operator.hpp"
+#include "perinom/operators/nonlocal_operator.hpp"
 #include "perinom/operators/bond_weights.hpp"
 #include "perinom/operators/influence.hpp"
 #include "perinom/operators/fused_stabilization.hpp"
@@ -129,7 +129,7 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// rows use the elastic moduli of the material.
   void prepare_tangent(const double* u) override;
 
-  const GradientOperator& G() const { return G_; }
+  const NonlocalOperator& G() const { return G_; }
   /// 1 or 2: the order of the fit G comes from (CorrespondenceOptions::operator_order).
   int operator_order() const { return order_; }
   /// The first-order stabilization operator (matrix-free), or nullptr when C_hg = 0 or with
@@ -183,7 +183,7 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   LinearElastic material_;
   Surface surface_;
   std::vector<double> volume_;
-  GradientOperator G_;
+  NonlocalOperator G_;
   std::optional<Stabilization> S_;
   std::optional<ScalarCsr> S_assembled_;  // S0 stored (storage assembled)
   std::optional<FusedStabilization> F_;   // S inside G's products (storage fused)

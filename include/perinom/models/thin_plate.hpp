@@ -8,7 +8,7 @@
 #include "perinom/models/tangent_model.hpp"
 #include "perinom/neighbors/families.hpp"
 #include "perinom/operators/influence.hpp"
-#include "perinom/operators/second_order_operator.hpp"
+#include "perinom/operators/nonlocal_operator.hpp"
 #include "perinom/operators/second_order_stabilization.hpp"
 
 namespace perinom {
@@ -63,7 +63,7 @@ class ThinPlateModel : public TangentModel {
   /// D0 = E t^3 / (12 (1 - nu^2)) (N m).
   double rigidity() const { return D0_; }
   const PlateCloud& plate() const { return plate_; }
-  const SecondOrderOperator& op() const { return op_; }
+  const NonlocalOperator& op() const { return op_; }
 
   // What drivers ask of any model (thin_plate_output.cpp): the fields deflection (m),
   // displacement (0, 0, w) for ParaView's Warp By Vector, curvature (1/m) and moment
@@ -81,9 +81,8 @@ class ThinPlateModel : public TangentModel {
   PlateCloud plate_;
   ThinPlateOptions opt_;
   double D0_;
-  SecondOrderOperator op_;
+  NonlocalOperator op_;
   std::optional<SecondOrderStabilization> S_;
-  std::vector<Offset> t_bond_;            // dual-support position -> bond
   std::vector<Offset> ghost_off_;         // per physical node: its ghosts (CSR)
   std::vector<ParticleId> ghost_list_;
   std::vector<double> ext_, grad_, hess_, Q_, fe_;  // workspaces over all nodes

@@ -8,7 +8,7 @@
 #include "perinom/core/types.hpp"
 #include "perinom/geometry/boundary_facets.hpp"
 #include "perinom/geometry/point_cloud.hpp"
-#include "perinom/operators/gradient_operator.hpp"
+#include "perinom/operators/nonlocal_operator.hpp"
 
 namespace perinom {
 
@@ -19,7 +19,7 @@ class BoundaryTrace {
  public:
   BoundaryTrace() = default;
   /// E from the facets and a gradient operator (its stored weights).
-  BoundaryTrace(BoundaryFacets facets, const PointCloud& cloud, const GradientOperator& G);
+  BoundaryTrace(BoundaryFacets facets, const PointCloud& cloud, const NonlocalOperator& G);
 
   const BoundaryFacets& facets() const { return facets_; }
   bool empty() const { return facets_.empty(); }

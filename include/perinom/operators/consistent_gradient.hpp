@@ -6,7 +6,7 @@
 #include "perinom/geometry/point_cloud.hpp"
 #include "perinom/neighbors/families.hpp"
 #include "perinom/operators/bond_weights.hpp"
-#include "perinom/operators/gradient_operator.hpp"
+#include "perinom/operators/nonlocal_operator.hpp"
 
 namespace perinom {
 
@@ -27,8 +27,7 @@ struct ConsistencyOptions {
   int max_iterations = 50000;
 };
 
-/// Corrects the gradient weights g (bonds x d, family order; the diagonal of G is -sum_j g_ij;
-/// from the first- or the second-order fit) to g~ = g + Delta such that
+/// Corrects the gradient weights g of G (first- or second-order fit) to g~ = g + Delta such that
 ///  - G~ differentiates linear fields exactly, like G (sum_j Delta_ij xi_ij = 0);
 ///  - its columns satisfy the discrete divergence theorem sum_i V_i G~_b[i][j] = c_j[b], with
 ///    c the boundary measure (BoundaryTrace::column_measure);
@@ -38,10 +37,11 @@ struct ConsistencyOptions {
 /// weights) of a scalar field gamma_b solving L gamma_b = c_b - G_b^T V 1. L is symmetric
 /// positive semi-definite (gamma^T L gamma = sum_i V_i^2 sum_j w_ij V_j r_ij^2; null space: the
 /// linear fields), solved by Jacobi-preconditioned CG, matrix-free (two bond passes per
-/// iteration). Returns g~ in g's layout.
+/// iteration). Returns g~ as g~[k*d + b] for bond k (family order), for the operator of given
+/// weights NonlocalOperator(G.shared_graph(), d, g~).
 std::vector<double> consistent_gradient_weights(const PointCloud& cloud, const Families& families,
-                                                const BondWeights& weights, const GradientOperator& G1,
-                                                const std::vector<double>& g,
+                                                const BondWeights& weights, const NonlocalOperator& G1,
+                                                const NonlocalOperator& G,
                                                 const std::vector<double>& c,
                                                 const ConsistencyOptions& options = {},
                                                 ConsistencyReport* report = nullptr);

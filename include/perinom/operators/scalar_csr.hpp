@@ -28,4 +28,10 @@ struct ScalarCsr {
 /// entries to acc (a RowAccumulator with one value per column; columns may repeat).
 ScalarCsr assemble_rows(std::size_t n, const std::function<void(std::size_t, RowAccumulator&)>& add_row);
 
+/// Recomputes the listed rows of A in place with add_row (as assemble_rows), keeping A's
+/// pattern: entries the new row lacks become zero. Throws std::logic_error when a new row
+/// has a column outside the pattern (a refresh after broken bonds only removes couplings).
+void reassemble_rows(ScalarCsr& A, const std::vector<ParticleId>& rows,
+                     const std::function<void(std::size_t, RowAccumulator&)>& add_row);
+
 }  // namespace perinom

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "perinom/core/types.hpp"
-#include "perinom/operators/gradient_operator.hpp"
+#include "perinom/operators/nonlocal_operator.hpp"
 #include "perinom/operators/stabilization.hpp"
 
 namespace perinom {
@@ -39,7 +39,7 @@ struct StrongRows {
 /// K_(i a),(j c) += sum_e local_i[(a d + c) d + e] G_e[i][j] for j in {i} + H_i (follower
 /// pressures).
 void for_each_tangent_row(
-    const GradientOperator& G, const PointwiseTangent& tangent, const Stabilization* S,
+    const NonlocalOperator& G, const PointwiseTangent& tangent, const Stabilization* S,
     const std::function<void(std::size_t, const std::vector<ParticleId>&,
                              const std::vector<double>&)>& visit,
     const StrongRows* strong = nullptr, const ScalarCsr* S0 = nullptr, const double* local = nullptr);
