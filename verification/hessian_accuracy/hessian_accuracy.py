@@ -103,10 +103,10 @@ def report(k14, k12, by_k, layers):
          "build/verification/hessian_accuracy/hessian_accuracy` (see the script's and the program's headers). "
          f"Release build, one OpenMP thread ({platform.machine()}, {os.cpu_count()} cores; load average "
          f"{os.getloadavg()[0]:.1f} when the run ended: other jobs shared the machine). Times: neighbour search, "
-         "assembly of the weights (bond_weights and SecondOrderOperator), and the best of 20 products.", "",
+         "assembly of the weights (bond_weights and the second-order NonlocalOperator), and the best of 20 products.", "",
          "w(x, y) = exp(xy) (sin 3(x - y) - cos 2(x + y)) on [-1, 1]^2, n x n particles at the cell centres of "
          "a regular lattice (h = 2/n), families of the k nearest neighbours (k-d tree), influence 1/r^2, "
-         "operators `SecondOrderOperator` (THEORY sec. 6). Errors: relative L2 over particles (seed 002 eq. 102, "
+         "operators `NonlocalOperator` of order 2 (THEORY sec. 6). Errors: relative L2 over particles (seed 002 eq. 102, "
          "Frobenius norm of the 2 x 2 Hessian error over that of the exact Hessian; the gradient likewise). "
          "*Interior*: particles whose family disc (radius delta_i, the distance to the k-th neighbour) lies inside "
          "the square; *boundary band*: the rest. Rates p are least-squares slopes of log e against log h "
