@@ -138,9 +138,8 @@ def main():
         for n, (scene, sets) in enumerate(CASES):
             folders = [os.path.join(tmp, f"{n}_{tag}") for tag in ("old", "new")]
             results = [run(b, scene, sets, f) for b, f in zip((args.old, args.new), folders)]
-            if any(r[0] != 0 for r in results):
-                worst, where = (0.0, "") if results[0][0] == results[1][0] else (math.inf, "exit codes differ")
-                where = where or f"both exit {results[0][0]}"
+            if any(r[0] != 0 for r in results):  # nothing to compare: a failure either way
+                worst, where = math.inf, f"exit codes {results[0][0]} and {results[1][0]}"
             else:
                 worst, where = difference(outputs(folders[0]), outputs(folders[1]))
             bad = worst > args.tolerance
