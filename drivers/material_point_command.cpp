@@ -9,14 +9,9 @@
 #include "perinom/core/error.hpp"
 #include "perinom/materials/linear_elastic.hpp"
 #include "perinom/materials/material_point.hpp"
+#include "perinom/materials/measures.hpp"
 
 namespace perinom::cli {
-namespace {
-
-double mean_stress(const double* s) { return (s[0] + s[4] + s[8]) / 3.0; }
-
-}  // namespace
-
 int material_point(const Options& opt) {
   if (opt.test < 1 || opt.test > 7) throw InputError("--test must be 1 ... 7 (seed 000 Table 2)");
   if (opt.substeps < 1) throw InputError("--substeps must be at least 1");

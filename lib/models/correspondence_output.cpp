@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "perinom/materials/measures.hpp"
 #include "perinom/models/correspondence.hpp"
 
 namespace perinom {
@@ -29,20 +30,6 @@ std::string format(const char* fmt, double a) {
 
 constexpr std::size_t kPointReals = 28;  // a plastic point: sigma (9), eps_p (9), xi, eps (9)
 
-/// The equivalent strain sqrt(2/3 e : e) of grad u (d x d): e the deviator of the 3 x 3 small
-/// strain (plane strain in 2-D).
-double equivalent_strain_of(const double* H, int d) {
-  double eps[9] = {};
-  for (int a = 0; a < d; ++a)
-    for (int b = 0; b < d; ++b) eps[a * 3 + b] = 0.5 * (H[a * d + b] + H[b * d + a]);
-  const double tr = (eps[0] + eps[4] + eps[8]) / 3.0;
-  double ee = 0.0;
-  for (int k = 0; k < 9; ++k) {
-    const double e = eps[k] - (k % 4 == 0 ? tr : 0.0);
-    ee += e * e;
-  }
-  return std::sqrt(2.0 / 3.0 * ee);
-}
 
 }  // namespace
 
@@ -119,7 +106,7 @@ std::vector<OutputField> CorrespondenceModel::output_fields(const double* u, boo
     OutputField H{"displacement_gradient", d * d, std::vector<double>(n * d * d)};
     gradient(u, H.values.data());
     OutputField eq{"equivalent_strain", 1, std::vector<double>(n)};
-    for (std::size_t i = 0; i < n; ++i) eq.values[i] = equivalent_strain_of(H.values.data() + i * d * d, d);
+    for (std::size_t i = 0; i < n; ++i) eq.values[i] = equivalent_strain(H.values.data() + i * d * d, d);
     out.push_back(std::move(H));
     out.push_back(std::move(eq));
   }

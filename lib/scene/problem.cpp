@@ -241,20 +241,6 @@ namespace {
 int axis_of(char c) { return c == 'x' ? 0 : c == 'y' ? 1 : 2; }
 }  // namespace
 
-double mean_stress(const double* sigma3) { return (sigma3[0] + sigma3[4] + sigma3[8]) / 3.0; }
-
-double equivalent_strain(const double* H, int d) {
-  double eps[9] = {};
-  for (int a = 0; a < d; ++a)
-    for (int b = 0; b < d; ++b) eps[a * 3 + b] = 0.5 * (H[a * d + b] + H[b * d + a]);
-  const double tr = (eps[0] + eps[4] + eps[8]) / 3.0;
-  double ee = 0.0;
-  for (int k = 0; k < 9; ++k) {
-    const double e = eps[k] - (k % 4 == 0 ? tr : 0.0);
-    ee += e * e;
-  }
-  return std::sqrt(2.0 / 3.0 * ee);
-}
 
 bool stress_field(const std::string& field) {
   return field == "stress" || field == "von_mises" || field == "mean_stress";

@@ -8,6 +8,7 @@
 
 #include "perinom/core/timer.hpp"
 #include "perinom/geometry/body.hpp"
+#include "perinom/materials/measures.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/models/loading.hpp"
 #include "perinom/models/rigid_body.hpp"
@@ -132,11 +133,6 @@ void reconstruct_stress(const std::vector<double>& sigma, const std::vector<doub
 /// The value of a stress field (stress_field(spec.field)) of a 3 x 3 stress.
 double stress_probe_value(const ProbeSpec& spec, const double* sigma3);
 
-/// Mean stress tr(sigma) / 3 of a 3 x 3 stress (Pa, tension positive), and the equivalent
-/// strain sqrt(2/3 e : e) of grad u (d x d; e the deviator of the 3 x 3 small strain, plane
-/// strain in 2-D).
-double mean_stress(const double* sigma3);
-double equivalent_strain(const double* H, int dim);
 
 /// The value of a probe's field at particle i (SI units).
 double probe_value(const ProbeSpec& spec, std::size_t i, const ProbeFields& f);
