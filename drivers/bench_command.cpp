@@ -10,7 +10,7 @@
 #include <memory>
 #include <random>
 #include <set>
-#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -21,9 +21,8 @@
 #include "perinom/models/correspondence.hpp"
 #include "perinom/neighbors/bond_graph.hpp"
 #include "perinom/neighbors/search.hpp"
-#include "perinom/operators/fused_stabilization.hpp"
 #include "perinom/operators/nonlocal_operator.hpp"
-#include "perinom/operators/stabilization.hpp"
+#include "perinom/operators/stabilization_term.hpp"
 #include "perinom/operators/scalar_csr.hpp"
 #include "perinom/solvers/adr.hpp"
 #include "perinom/solvers/verlet.hpp"
@@ -102,9 +101,8 @@ int bench_refresh(const Options& opt, const PointCloud& cloud) {
   auto build = [&] {
     const BondWeights bw = bond_weights(cloud, fam, Influence::inverse_square);
     auto G = std::make_unique<NonlocalOperator>(cloud, graph, bw);
-    auto S = std::make_unique<Stabilization>(cloud, *G, modulus);
-    auto F = FusedStabilization::make(cloud, *G, modulus);
-    return std::make_tuple(std::move(G), std::move(S), std::move(F));
+    auto S = make_stabilization(cloud, *G, modulus, AssemblyLevel::fused);
+    return std::make_pair(std::move(G), std::move(S));
   };
   // 2. A full build, timed (best of three).
   double build_seconds = 1e300;
@@ -113,7 +111,7 @@ int bench_refresh(const Options& opt, const PointCloud& cloud) {
     build();
     build_seconds = std::min(build_seconds, wall_seconds() - t0);
   }
-  auto [G, S, F] = build();
+  auto [G, S] = build();
   // 3. B distinct random bonds, broken in both directions.
   std::mt19937_64 rng(2026);
   std::vector<std::pair<ParticleId, ParticleId>> breaks;
@@ -134,7 +132,6 @@ int bench_refresh(const Options& opt, const PointCloud& cloud) {
     const double t0 = wall_seconds();
     G->refresh_rows(rows);
     S->refresh_rows(rows);
-    F->refresh_rows(rows);
     const double t = wall_seconds() - t0;
     refresh_seconds = std::min(refresh_seconds, t);
     spent += t;
@@ -216,15 +213,16 @@ int bench(const Options& opt) {
   // assembled), or the matrix-free stabilization's two bond passes (index + w V per bond each).
   const double w_bytes = opt.single_precision ? sizeof(float) : sizeof(double);
   const double product_bytes = bonds * (sizeof(ParticleId) + d * w_bytes);
-  const ScalarCsr* S0 = model.assembled_stabilization();
-  const double s_bytes = !model.stabilization()       ? 0.0
-                         : model.fused_stabilization() ? bonds * w_bytes
-                         : S0 ? double(S0->nonzeros()) * (sizeof(ParticleId) + sizeof(double))
-                              : 2.0 * bonds * (sizeof(ParticleId) + sizeof(double));
-  const char* storage = !model.stabilization()       ? "none"
-                        : model.fused_stabilization() ? "fused"
-                        : S0                          ? "assembled"
-                                                      : "matrix_free";
+  const StabilizationTerm* S = model.stabilization();
+  const AssemblyLevel level = S ? S->level() : AssemblyLevel::assembled;
+  const double s_bytes = !S                                 ? 0.0
+                         : level == AssemblyLevel::fused     ? bonds * w_bytes
+                         : level == AssemblyLevel::assembled ? double(S->stored()->nonzeros()) * (sizeof(ParticleId) + sizeof(double))
+                                                             : 2.0 * bonds * (sizeof(ParticleId) + sizeof(double));
+  const char* storage = !S                                 ? "none"
+                        : level == AssemblyLevel::fused     ? "fused"
+                        : level == AssemblyLevel::assembled ? "assembled"
+                                                            : "matrix_free";
   const double bytes = 2.0 * product_bytes + s_bytes;
   const double gbs = bytes / per_eval / 1e9, stream = stream_triad_gbs();
   std::printf("particles                %zu\n", cloud.size());

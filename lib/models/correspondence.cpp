@@ -78,9 +78,7 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
   if (!law_ && options.plasticity) {
     if (material.plane == PlaneCondition::stress)
       throw InputError("material.plane: Drucker-Prager plasticity needs plane strain in 2-D");
-    auto points = std::make_unique<PlasticPoints>(*options.plasticity, dim_, volume_.size(), options.kinematics);
-    plastic_ = points.get();
-    law_ = std::move(points);
+    law_ = std::make_unique<PlasticPoints>(*options.plasticity, dim_, volume_.size(), options.kinematics);
   }
   if (!law_) law_ = std::make_unique<ElasticPoints>(material, volume_.size());
   C_.resize(static_cast<std::size_t>(dim_) * dim_ * dim_ * dim_);
@@ -93,37 +91,29 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
   if (order_ != 1 && order_ != 2)
     throw std::invalid_argument("CorrespondenceModel: operator_order must be 1 or 2");
   const BondWeights weights = bond_weights(cloud, families, options.influence);
+  graph_ = std::make_shared<BondGraph>(families);
   if (order_ == 2) build_second_order(cloud, families, weights, options, facets);
-  else G_ = NonlocalOperator(cloud, families, weights,
+  else G_ = NonlocalOperator(cloud, graph_, weights,
                              OperatorOptions{1, false, consistent ? WeightPrecision::float64 : options.weight_precision});
   const double modulus = options.stabilization * 2.0 * material.mu();  // c_i = modulus / tr K_i
   if (options.stabilization > 0.0 && order_ == 1 && consistent) {
     // S from the uncorrected G (zero on linear fields all the same), stored before G changes.
-    S_assembled_ = assemble_stabilization(Stabilization(cloud, G_, modulus), particles());
+    S_ = stored_stabilization(G_, assemble_stabilization(Stabilization(cloud, G_, modulus), particles()),
+                              "stabilization S (assembled)");
   } else if (options.stabilization > 0.0 && order_ == 1) {
-    S_.emplace(cloud, G_, modulus);
     const StabilizationStorage storage = options.stabilization_storage;
-    if (storage == StabilizationStorage::fused || storage == StabilizationStorage::automatic) {
-      F_ = FusedStabilization::make(cloud, G_, modulus);
-      if (!F_ && storage == StabilizationStorage::fused)
-        throw InputError("model.stabilization_storage: fused needs symmetric families (a horizon "
-                         "radius, not a neighbour count); use assembled or matrix_free");
-    }
-    if (F_) {
-      B_.resize(particles() * dim_ * dim_);
-      lap_.resize(particles() * dim_);
-    } else if (storage == StabilizationStorage::matrix_free) {
-      B_.resize(particles() * dim_ * dim_);
-      r_.resize(particles() * dim_);
-    } else {
-      S_assembled_ = assemble_stabilization(*S_, particles());
-    }
+    const bool fused = storage == StabilizationStorage::fused ||
+                       (storage == StabilizationStorage::automatic && G_.graph().symmetric());
+    S_ = make_stabilization(cloud, G_, modulus,
+                            fused                                        ? AssemblyLevel::fused
+                            : storage == StabilizationStorage::matrix_free ? AssemblyLevel::matrix_free
+                                                                         : AssemblyLevel::assembled);
   }
   if (consistent && order_ == 1) make_consistent(cloud, families, weights, facets, options.weight_precision);
   H_.resize(particles() * dim_ * dim_);
   Q_.resize(particles() * dim_ * dim_);
   if (formulation_ != Formulation::classical && !consistent) P_.resize(particles() * dim_ * dim_);
-  if (S_ || S_assembled_) Su_.resize(particles() * dim_);
+  if (S_) Su_.resize(particles() * dim_);
 }
 
 void CorrespondenceModel::make_consistent(const PointCloud& cloud, const Families& families,
@@ -158,7 +148,7 @@ void CorrespondenceModel::build_second_order(const PointCloud& cloud, const Fami
   if (stabilized && storage != StabilizationStorage::automatic && storage != StabilizationStorage::assembled)
     throw InputError("model.stabilization_storage: with model.operator_order 2 the stabilization is the "
                      "second-order operator energy, stored assembled (use auto or assembled)");
-  G_ = NonlocalOperator(cloud, families, weights,
+  G_ = NonlocalOperator(cloud, graph_, weights,
                         OperatorOptions{2, false, consistent ? WeightPrecision::float64 : options.weight_precision});
   // The first-order scale: cv_i wv_ij = c_i V_i w_ij V_j with c_i = C_hg 2 mu / tr K_i.
   std::vector<double> cv = stabilization_coefficients(G_, options.stabilization, material_.mu());
@@ -168,7 +158,26 @@ void CorrespondenceModel::build_second_order(const PointCloud& cloud, const Fami
   // The Hessian weights only enter the stabilization's z_ij (seed 002 eq. 35).
   const NonlocalOperator fit(cloud, G_.shared_graph(), weights, OperatorOptions{2, true});
   const SecondOrderStabilization S(cloud, fit, std::move(cv));
-  S_assembled_ = assemble_second_order_stabilization(S, particles());
+  S_ = stored_stabilization(G_, assemble_second_order_stabilization(S, particles()), "second-order stabilization S");
+}
+
+BondBreaks CorrespondenceModel::break_bonds(const std::vector<std::pair<ParticleId, ParticleId>>& bonds) {
+  for (const auto& [i, j] : bonds)
+    if (static_cast<std::size_t>(i) >= particles() || static_cast<std::size_t>(j) >= particles())
+      throw std::out_of_range("break_bonds: bond (" + std::to_string(i) + ", " + std::to_string(j) +
+                              ") names a particle beyond the " + std::to_string(particles()) + " of the cloud");
+  if (formulation_ == Formulation::consistent)
+    throw std::logic_error("break_bonds: the consistent formulation's G~ comes from a global correction and "
+                           "cannot be refreshed row by row");
+  if (S_ && order_ == 2)
+    throw std::logic_error("break_bonds: the second-order stabilization is stored without its fit");
+  BondBreaks out;
+  out.rows = graph_->rows_touched(bonds);
+  for (const auto& [i, j] : bonds) out.broken += graph_->break_bond(i, j) ? 1 : 0;
+  G_.refresh_rows(out.rows);
+  if (S_) S_->refresh_rows(out.rows);
+  out.detached = G_.detached();
+  return out;
 }
 
 void CorrespondenceModel::gradient(const double* u, double* H) const { G_.apply(u, dim_, H); }
@@ -176,21 +185,17 @@ void CorrespondenceModel::gradient(const double* u, double* H) const { G_.apply(
 void CorrespondenceModel::internal_force(const double* u, double* f) {
   const int d2 = dim_ * dim_;
   const std::size_t n = particles();
-  const bool fused = F_.has_value();
-  if (fused) F_->gradient_and_laplacian(u, H_.data(), lap_.data());
+  if (S_) S_->gradient(u, H_.data());
   else G_.apply(u, dim_, H_.data());
-  const bool matrix_free = S_ && !S_assembled_ && !fused;
-  if (matrix_free) S_->bond_terms(u, H_.data(), B_.data(), r_.data());
-  if (fused) F_->tensor_terms(H_.data(), B_.data());
-  const bool stabilized = matrix_free || fused;  // G^T(-B) joins the transposed product
+  // S u = G^T(-B) + rest: -B joins V . P in the weak-form product.
+  const double* B = S_ ? S_->tensor_part(u, H_.data()) : nullptr;
   const bool strong_rows = formulation_ == Formulation::improved || formulation_ == Formulation::strong;
-  // Q = V P - B: the stabilization's G^T(-B) rides along with the weak-form product.
   for_each_law_block(n, [&](std::size_t lo, std::size_t hi) {
     law_->stresses(lo, hi, H_.data(), Q_.data());
     for (std::size_t i = lo; i < hi; ++i) {
       double* q = Q_.data() + i * d2;
       if (strong_rows) std::copy(q, q + d2, P_.data() + i * d2);
-      for (int k = 0; k < d2; ++k) q[k] = q[k] * volume_[i] - (stabilized ? B_[i * d2 + k] : 0.0);
+      for (int k = 0; k < d2; ++k) q[k] = q[k] * volume_[i] - (B ? B[i * d2 + k] : 0.0);
     }
   });
   if (!strong_rows) {
@@ -198,7 +203,7 @@ void CorrespondenceModel::internal_force(const double* u, double* f) {
   } else {
     G_.apply_transpose(Q_.data(), dim_, f, &surface_.interior);
     // The band's stabilization G^T(-B), before its rows are overwritten by the strong form.
-    if (stabilized) G_.apply_transpose(B_.data(), dim_, Su_.data(), &surface_.band);
+    if (B) G_.apply_transpose(B, dim_, Su_.data(), &surface_.band);
     G_.divergence(P_.data(), dim_, f, &surface_.band);
     const auto& band = surface_.band;
     const int d = dim_;
@@ -210,16 +215,11 @@ void CorrespondenceModel::internal_force(const double* u, double* f) {
       for (int a = 0; a < d; ++a) {
         double Pm = 0.0;
         for (int b = 0; b < d; ++b) Pm += P[a * d + b] * m[b];
-        f[i * d + a] = -volume_[i] * (f[i * d + a] - Pm) - (stabilized ? Su_[i * d + a] : 0.0);
+        f[i * d + a] = -volume_[i] * (f[i * d + a] - Pm) - (B ? Su_[i * d + a] : 0.0);
       }
     }
   }
-  if (matrix_free) S_->add_direct(u, H_.data(), r_.data(), f);
-  if (fused) {
-    const double* lap = lap_.data();
-    parallel_for(lap_.size(), [f, lap](std::size_t k) { f[k] -= lap[k]; });
-  }
-  if (S_assembled_) S_assembled_->apply_add(u, dim_, f);
+  if (S_) S_->add_rest(u, H_.data(), f);
   if (follower_ && follower_->active()) follower_->add_force(H_.data(), f);
 }
 
@@ -234,23 +234,8 @@ double CorrespondenceModel::energy(const double* u) {
   law_->energies(H_.data(), psi);
   // Summed in fixed blocks: the same bits for any thread count.
   double w = parallel_sums<1>(n, [&](std::size_t i, double* acc) { acc[0] += volume_[i] * psi[i]; })[0];
-  if (S_ || S_assembled_) {
-    // W_s = 1/2 u . S u, with S u = G^T(-B) + the direct bond term, or the stored S0.
-    if (S_assembled_) {
-      std::fill(Su_.begin(), Su_.end(), 0.0);
-      S_assembled_->apply_add(u, dim_, Su_.data());
-    } else if (F_) {
-      // S u = -lap(u) - G^T(T).
-      F_->gradient_and_laplacian(u, H_.data(), lap_.data());
-      F_->tensor_terms(H_.data(), B_.data());
-      G_.apply_transpose(B_.data(), dim_, Su_.data());
-      for (std::size_t k = 0; k < Su_.size(); ++k) Su_[k] = -Su_[k] - lap_[k];
-    } else {
-      S_->bond_terms(u, H_.data(), B_.data(), r_.data());
-      G_.apply_transpose(B_.data(), dim_, Su_.data());
-      for (auto& v : Su_) v = -v;
-      S_->add_direct(u, H_.data(), r_.data(), Su_.data());
-    }
+  if (S_) {
+    S_->apply(u, H_.data(), Su_.data());  // W_s = 1/2 u . S u
     for (std::size_t k = 0; k < Su_.size(); ++k) w += 0.5 * u[k] * Su_[k];
   }
   return w;
@@ -269,10 +254,8 @@ void CorrespondenceModel::visit_rows(
                              const std::vector<double>&)>& visit,
     const double* local) const {
   const StrongRows strong{surface_.in_band.data(), surface_.normal_over_h.data()};
-  // Order 1 adds S0's rows from S; order 2 has only the stored S0.
-  const ScalarCsr* S0 = !S_ && S_assembled_ ? &*S_assembled_ : nullptr;
   const bool strong_rows = formulation_ == Formulation::improved || formulation_ == Formulation::strong;
-  for_each_tangent_row(G_, C, stabilization(), visit, strong_rows ? &strong : nullptr, S0, local);
+  for_each_tangent_row(G_, C, S_.get(), visit, strong_rows ? &strong : nullptr, local);
 }
 
 void CorrespondenceModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
@@ -315,17 +298,9 @@ std::vector<std::pair<std::string, std::size_t>> CorrespondenceModel::memory() c
   std::vector<std::pair<std::string, std::size_t>> m;
   m.emplace_back(order_ == 2 ? "gradient G (second-order fit)" : "gradient operator G and G^T",
                  G_.memory_bytes());
-  if (!S_ && S_assembled_)
-    m.emplace_back(order_ == 2 ? "second-order stabilization S" : "stabilization S (assembled)", S_assembled_->memory_bytes());
   if (!trace_.empty()) m.emplace_back("boundary facets and their trace", trace_.memory_bytes());
-  if (S_) m.emplace_back(S_assembled_ ? "stabilization S (assembled)"
-                        : F_        ? "stabilization (fused)"
-                                    : "stabilization (matrix-free)",
-                        S_->memory_bytes() + (S_assembled_ ? S_assembled_->memory_bytes() : 0) +
-                            (F_ ? F_->memory_bytes() : 0));
-  m.emplace_back("workspaces (grad u, V.P, P, B, r)",
-                 (H_.size() + Q_.size() + P_.size() + B_.size() + r_.size() + Su_.size() + lap_.size()) *
-                     sizeof(double));
+  if (S_) m.emplace_back(S_->name(), S_->memory_bytes());
+  m.emplace_back("workspaces (grad u, V.P, P, S u)", (H_.size() + Q_.size() + P_.size() + Su_.size()) * sizeof(double));
   if (law_->has_history())
     m.emplace_back("material states (committed and trial) and tangents", law_->memory_bytes() + C_.size() * sizeof(double));
   if (formulation_ == Formulation::improved || formulation_ == Formulation::strong)

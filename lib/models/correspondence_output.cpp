@@ -1,6 +1,6 @@
 // What the drivers and the load path ask of a correspondence model through Model and
 // ModelHistory: its output fields, its stress measure, its lines of the plan, and its
-// plastic history (through plastic()).
+// law's history.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -28,7 +28,6 @@ std::string format(const char* fmt, double a) {
   return buf;
 }
 
-constexpr std::size_t kPointReals = 28;  // a plastic point: sigma (9), eps_p (9), xi, eps (9)
 
 
 }  // namespace
@@ -91,16 +90,12 @@ std::vector<OutputField> CorrespondenceModel::output_fields(const double* u, boo
     out.push_back({"subregion_E", 1, std::vector<double>(surface_.in_band.begin(), surface_.in_band.end())});
     out.push_back({"surface", 1, std::vector<double>(surface_.on_surface.begin(), surface_.on_surface.end())});
   }
-  if (plastic_) {
-    std::vector<double> xi, eps_p, yielded;
-    for (const auto& point : plastic_->committed()) {
-      xi.push_back(point.law.xi);
-      yielded.push_back(point.law.xi > 0.0 ? 1.0 : 0.0);
-      eps_p.insert(eps_p.end(), point.law.eps_p, point.law.eps_p + 9);
-    }
-    out.push_back({"eq_plastic_strain", 1, std::move(xi)});
-    out.push_back({"plastic_strain", 9, std::move(eps_p)});
-    out.push_back({"yielded", 1, std::move(yielded)});
+  // The law's own fields (its committed states; "stress" is the model's above).
+  for (const LawField& field : law_->fields()) {
+    if (field.name == "stress") continue;
+    OutputField o{field.name, field.components, {}};
+    law_->field(field.name, nullptr, o.values);
+    out.push_back(std::move(o));
   }
   if (probe_fields) {
     OutputField H{"displacement_gradient", d * d, std::vector<double>(n * d * d)};
@@ -153,62 +148,14 @@ std::vector<std::string> CorrespondenceModel::not_assembled() const {
   return items;
 }
 
-void CorrespondenceModel::set_history_mode(HistoryMode mode) {
-  if (plastic_) plastic_->set_mode(mode == HistoryMode::flagged ? PlasticMode::lbc : PlasticMode::return_map);
-}
-
-void CorrespondenceModel::commit_trial() {
-  if (plastic_) plastic_->commit();
-}
-
-std::size_t CorrespondenceModel::flag_violations(double tolerance) {
-  return plastic_ ? plastic_->flag_violations(tolerance) : 0;
-}
-
-std::vector<double> CorrespondenceModel::history_variable() const {
-  std::vector<double> xi;
-  if (plastic_)
-    for (const auto& point : plastic_->committed()) xi.push_back(point.law.xi);
-  return xi;
-}
-
-std::size_t CorrespondenceModel::values_per_particle() const { return kPointReals; }
-
-HistoryState CorrespondenceModel::save_history() const {
-  HistoryState s;
-  if (!plastic_) return s;
-  s.values.reserve(plastic_->size() * kPointReals);
-  for (const auto& point : plastic_->committed()) {
-    s.values.insert(s.values.end(), point.law.sigma, point.law.sigma + 9);
-    s.values.insert(s.values.end(), point.law.eps_p, point.law.eps_p + 9);
-    s.values.push_back(point.law.xi);
-    s.values.insert(s.values.end(), point.eps, point.eps + 9);
-  }
-  s.flags = plastic_->flags();
-  return s;
-}
-
-void CorrespondenceModel::restore_history(const HistoryState& s) {
-  if (!plastic_) {
-    if (!s.values.empty() || !s.flags.empty())
-      throw std::invalid_argument("CorrespondenceModel: a plastic history for an elastic model");
-    return;
-  }
-  if (s.values.size() != s.flags.size() * kPointReals)
-    throw std::invalid_argument("CorrespondenceModel: the history holds " + std::to_string(s.values.size()) +
-                                " values for " + std::to_string(s.flags.size()) + " flags (28 per particle)");
-  std::vector<PlasticPoints::Point> points(s.flags.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const double* x = s.values.data() + i * kPointReals;
-    std::copy(x, x + 9, points[i].law.sigma), std::copy(x + 9, x + 18, points[i].law.eps_p);
-    points[i].law.xi = x[18];
-    std::copy(x + 19, x + 28, points[i].eps);
-  }
-  plastic_->restore(std::move(points), s.flags);
-}
-
-void CorrespondenceModel::reset_history() {
-  if (plastic_) plastic_->reset();
-}
+// ModelHistory: the law's history (history() is nullptr when the law has none).
+void CorrespondenceModel::set_history_mode(HistoryMode mode) { law_->history()->set_history_mode(mode); }
+void CorrespondenceModel::commit_trial() { law_->commit(); }
+std::size_t CorrespondenceModel::flag_violations(double tolerance) { return law_->history()->flag_violations(tolerance); }
+std::vector<double> CorrespondenceModel::history_variable() const { return law_->history()->history_variable(); }
+std::size_t CorrespondenceModel::values_per_particle() const { return law_->history()->values_per_particle(); }
+HistoryState CorrespondenceModel::save_history() const { return law_->history()->save_history(); }
+void CorrespondenceModel::restore_history(const HistoryState& s) { law_->history()->restore_history(s); }
+void CorrespondenceModel::reset_history() { law_->history()->reset_history(); }
 
 }  // namespace perinom

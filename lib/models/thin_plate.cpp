@@ -94,41 +94,31 @@ void ThinPlateModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
     return s = plate_.sign[g], plate_.image[g];
   };
   auto dot3 = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
-#pragma omp parallel
-  {
-    RowAccumulator acc(phys, 1);
-    std::vector<double> values;
+  // The row of r and those of its ghosts, folded: a ghost's row adds with its sign.
+  auto fill = [&, this](std::size_t r, RowAccumulator& acc) {
     double sa = 1.0;  // the sign of the row being added
     const std::function<void(ParticleId, double)> add = [&](ParticleId b, double v) {
       double sb;
       const ParticleId m = physical_of(b, sb);
       *acc.at(m) += sa * sb * v;
     };
-#pragma omp for schedule(dynamic, 64)
-    for (std::size_t r = 0; r < phys; ++r) {
-      // The rows of r and of its ghosts, folded.
-      for (Offset q = -1; q < ghost_off_[r + 1] - ghost_off_[r]; ++q) {
-        const std::size_t a = q < 0 ? r : static_cast<std::size_t>(ghost_list_[ghost_off_[r] + q]);
-        sa = q < 0 ? 1.0 : plate_.sign[a - phys];
-        // Bending: K_ab = sum_i A_i h_ia . Dm h_ib over the centres i that see a.
-        // (visit_column gives the centre a itself first, with its diagonal.)
-        H.visit_column(a, [&](ParticleId i, const double* h_ia) {
-          if (static_cast<std::size_t>(i) >= phys) return;
-          double v[3];
-          moment(h_ia, v);
-          v[1] *= 2.0;
-          for (double& x : v) x *= plate_.area[i];
-          H.visit_row(i, [&](ParticleId j, const double* h_ij) { add(j, dot3(v, h_ij)); }, hessian);
-        }, hessian);
-        if (S_) S_->add_row(a, add);
-      }
-      acc.finish();
-      values.resize(acc.cols().size());
-      for (std::size_t k = 0; k < values.size(); ++k) values[k] = *acc.block(k);
-      visit(r, acc.cols(), values);
-      acc.clear();
+    for (Offset q = -1; q < ghost_off_[r + 1] - ghost_off_[r]; ++q) {
+      const std::size_t a = q < 0 ? r : static_cast<std::size_t>(ghost_list_[ghost_off_[r] + q]);
+      sa = q < 0 ? 1.0 : plate_.sign[a - phys];
+      // Bending: K_ab = sum_i A_i h_ia . Dm h_ib over the centres i that see a.
+      // (visit_column gives the centre a itself first, with its diagonal.)
+      H.visit_column(a, [&](ParticleId i, const double* h_ia) {
+        if (static_cast<std::size_t>(i) >= phys) return;
+        double v[3];
+        moment(h_ia, v);
+        v[1] *= 2.0;
+        for (double& x : v) x *= plate_.area[i];
+        H.visit_row(i, [&](ParticleId j, const double* h_ij) { add(j, dot3(v, h_ij)); }, hessian);
+      }, hessian);
+      if (S_) S_->add_row(a, add);
     }
-  }
+  };
+  for_each_block_row(phys, phys, 1, [&] { return RowFill(fill); }, visit);
 }
 
 std::vector<double> ThinPlateModel::stiffness_row_sums() const {

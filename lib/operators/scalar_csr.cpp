@@ -49,19 +49,11 @@ double ScalarCsr::at(std::size_t i, std::size_t j) const {
 ScalarCsr assemble_rows(std::size_t n, const std::function<void(std::size_t, RowAccumulator&)>& add_row) {
   std::vector<std::vector<ParticleId>> row_cols(n);
   std::vector<std::vector<double>> row_vals(n);
-#pragma omp parallel
-  {
-    RowAccumulator acc(n, 1);
-#pragma omp for schedule(dynamic, 64)
-    for (std::size_t r = 0; r < n; ++r) {
-      add_row(r, acc);
-      acc.finish();
-      row_cols[r] = acc.cols();
-      row_vals[r].resize(row_cols[r].size());
-      for (std::size_t k = 0; k < row_cols[r].size(); ++k) row_vals[r][k] = *acc.block(k);
-      acc.clear();
-    }
-  }
+  for_each_block_row(n, n, 1, [&add_row] { return add_row; },
+                     [&](std::size_t r, const std::vector<ParticleId>& cols, const std::vector<double>& values) {
+                       row_cols[r] = cols;
+                       row_vals[r] = values;
+                     });
   ScalarCsr A;
   A.offsets.assign(n + 1, 0);
   for (std::size_t r = 0; r < n; ++r) A.offsets[r + 1] = A.offsets[r] + row_cols[r].size();

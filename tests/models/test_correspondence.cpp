@@ -196,22 +196,22 @@ TEST_CASE("the fused, matrix-free and assembled stabilizations give the same for
       };
       INFO("dim " << k.dim << (k.knn ? " knn" : " radius") << " formulation " << int(form));
       const auto stored = make(Storage::assembled);
-      REQUIRE(stored->assembled_stabilization() != nullptr);
+      REQUIRE(stored->stabilization()->level() == AssemblyLevel::assembled);
       const auto u = test::random_field(stored->dofs(), 1e-4, 21);
       std::vector<double> fs(u.size()), fo(u.size());
       stored->internal_force(u.data(), fs.data());
       // k nearest neighbours make asymmetric families: no fused S, and auto falls back.
       if (k.knn) {
         CHECK_THROWS_AS(make(Storage::fused), InputError);
-        CHECK(make(Storage::automatic)->assembled_stabilization() != nullptr);
+        CHECK(make(Storage::automatic)->stabilization()->level() == AssemblyLevel::assembled);
       } else {
-        CHECK(make(Storage::automatic)->fused_stabilization());
+        CHECK(make(Storage::automatic)->stabilization()->level() == AssemblyLevel::fused);
       }
       for (const Storage other : {Storage::matrix_free, Storage::fused}) {
         if (other == Storage::fused && k.knn) continue;
         const auto model = make(other);
-        REQUIRE(model->assembled_stabilization() == nullptr);
-        REQUIRE(model->fused_stabilization() == (other == Storage::fused));
+        REQUIRE(model->stabilization()->level() ==
+                (other == Storage::fused ? AssemblyLevel::fused : AssemblyLevel::matrix_free));
         model->internal_force(u.data(), fo.data());
         double err = 0.0;
         for (std::size_t m = 0; m < u.size(); ++m) err = std::max(err, std::abs(fs[m] - fo[m]));

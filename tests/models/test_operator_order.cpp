@@ -117,7 +117,7 @@ TEST_CASE("order 2: no force for a linear displacement away from the surface, st
 TEST_CASE("order 2: the classical force is the derivative of the energy, stabilization included",
           "[models][operator_order]") {
   Problem p = block("classical", 0.25);
-  REQUIRE(p.as<CorrespondenceModel>().assembled_stabilization() != nullptr);
+  REQUIRE(p.as<CorrespondenceModel>().stabilization()->stored() != nullptr);
   const std::size_t n = p.as<CorrespondenceModel>().dofs();
   const std::vector<double> u = test::random_field(n, 1e-5, 9);
   std::vector<double> f(n);

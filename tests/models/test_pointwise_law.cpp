@@ -1,6 +1,7 @@
 // The pointwise law interface (pointwise_law.hpp) driven alone, and through the model.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -271,4 +272,36 @@ TEST_CASE("a model given a third law uses it in force, energy, stress and tangen
   }
   CHECK_THROWS_AS(CorrespondenceModel(c, f, m, opt, {}, {}, std::make_unique<ElasticPoints>(m, c.size() - 1)),
                   std::invalid_argument);
+}
+
+TEST_CASE("a law with history given to the model drives the model's history, with no plasticity option",
+          "[models]") {
+  const PointCloud c = test::lattice(2, 6, 0.2);
+  const Families f = radius_families(c, 2.015);
+  const LinearElastic m = elastic(2, PlaneCondition::strain);
+  const CorrespondenceOptions opt{Influence::inverse_square, 0.5};
+  CorrespondenceModel elastic_model(c, f, m, opt);
+  CHECK(elastic_model.history() == nullptr);
+  CorrespondenceModel model(c, f, m, opt, {}, {}, std::make_unique<PlasticPoints>(drucker_prager(), 2, c.size()));
+  ModelHistory* h = model.history();
+  REQUIRE(h != nullptr);
+  REQUIRE(model.plastic() != nullptr);
+  // Loaded into the plastic range under the return map, committed: the history moved.
+  h->set_history_mode(HistoryMode::return_map);
+  CHECK(model.plastic()->mode() == PlasticMode::return_map);
+  std::vector<double> u(c.size() * 2);
+  for (std::size_t i = 0; i < c.size(); ++i) u[i * 2 + 1] = -0.02 * c.x[i * 2 + 1];
+  h->commit(u.data());
+  const std::vector<double> xi = h->history_variable();
+  REQUIRE(xi.size() == c.size());
+  CHECK(*std::max_element(xi.begin(), xi.end()) > 0.0);
+  // Saved, reset, restored: the same committed numbers.
+  const HistoryState saved = h->save_history();
+  CHECK(saved.values.size() == c.size() * h->values_per_particle());
+  h->reset_history();
+  const std::vector<double> virgin = h->history_variable();
+  CHECK(*std::max_element(virgin.begin(), virgin.end()) == 0.0);
+  h->restore_history(saved);
+  CHECK(h->history_variable() == xi);
+  CHECK_THROWS_AS(h->restore_history(HistoryState{{1.0}, {0}}), std::invalid_argument);
 }

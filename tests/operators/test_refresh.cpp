@@ -12,6 +12,7 @@
 #include <random>
 #include <set>
 
+#include "../support/broken_bonds.hpp"
 #include "../support/clouds.hpp"
 #include "perinom/materials/linear_elastic.hpp"
 #include "perinom/neighbors/bond_graph.hpp"
@@ -20,43 +21,16 @@
 #include "perinom/operators/nonlocal_operator.hpp"
 #include "perinom/operators/second_order_stabilization.hpp"
 #include "perinom/operators/stabilization.hpp"
+#include "perinom/operators/stabilization_term.hpp"
 #include "perinom/operators/tangent_rows.hpp"
 
 using namespace perinom;
 
 namespace {
 
-using Bond = std::pair<ParticleId, ParticleId>;
-
-/// The families without the broken bonds (both directions), supports unchanged.
-Families without(const Families& f, const std::set<Bond>& broken) {
-  Families g;
-  g.support = f.support;
-  for (std::size_t i = 0; i < f.particles(); ++i) {
-    for (Offset k = f.begin(i); k < f.end(i); ++k) {
-      const ParticleId j = f.neighbors[k];
-      if (!broken.count({static_cast<ParticleId>(i), j}) && !broken.count({j, static_cast<ParticleId>(i)}))
-        g.neighbors.push_back(j);
-    }
-    g.offsets.push_back(static_cast<Offset>(g.neighbors.size()));
-  }
-  return g;
-}
-
-/// `count` distinct bonds of the families, drawn with a fixed seed.
-std::vector<Bond> random_bonds(const Families& f, std::size_t count, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::set<Bond> chosen;
-  std::vector<Bond> out;
-  while (out.size() < count) {
-    const std::size_t i = rng() % f.particles();
-    if (f.end(i) == f.begin(i)) continue;
-    const ParticleId j = f.neighbors[f.begin(i) + static_cast<Offset>(rng() % (f.end(i) - f.begin(i)))];
-    const Bond b{std::min<ParticleId>(i, j), std::max<ParticleId>(i, j)};
-    if (chosen.insert(b).second) out.push_back({static_cast<ParticleId>(i), j});
-  }
-  return out;
-}
+using test::Bond;
+using test::random_bonds;
+using test::without;
 
 double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
   REQUIRE(a.size() == b.size());
@@ -90,7 +64,7 @@ double rows_difference(const Rows& a, const Rows& b) {
 }
 
 Rows tangent_rows(const NonlocalOperator& G, const std::vector<double>& C, const std::vector<double>& volume,
-                  const Stabilization* S, const ScalarCsr* S0, std::vector<double>& row_sums) {
+                  const StabilizationTerm* S, std::vector<double>& row_sums) {
   Rows rows;
   const int d = G.dim();
   row_sums.assign(G.rows() * d, 0.0);
@@ -103,8 +77,7 @@ Rows tangent_rows(const NonlocalOperator& G, const std::vector<double>& C, const
                              for (int c = 0; c < d; ++c) row_sums[i * d + a] += std::abs(b[a * d + c]);
                            rows[{i, cols[k]}] = b;
                          }
-                       },
-                       nullptr, S0);
+                       });
   return rows;
 }
 
@@ -152,6 +125,12 @@ TEST_CASE("refreshing the rows of broken bonds equals building without them", "[
     std::optional<SecondOrderStabilization> S2;
     ScalarCsr S0;
     std::vector<double> area(cloud.size(), 1.0);
+    // The same S behind the model's interface, at every assembly level the families allow.
+    std::vector<AssemblyLevel> levels{AssemblyLevel::assembled, AssemblyLevel::matrix_free};
+    if (!k.knn) levels.push_back(AssemblyLevel::fused);
+    std::vector<std::unique_ptr<StabilizationTerm>> terms;
+    if (k.order == 1)
+      for (const AssemblyLevel level : levels) terms.push_back(make_stabilization(cloud, G, modulus, level));
     if (k.order == 1) {
       S.emplace(cloud, G, modulus);
       F = FusedStabilization::make(cloud, G, modulus);
@@ -168,6 +147,7 @@ TEST_CASE("refreshing the rows of broken bonds equals building without them", "[
     G.refresh_rows(rows);
     if (S) S->refresh_rows(rows), refresh_stabilization(S0, *S, *graph, rows);
     if (F) F->refresh_rows(rows);
+    for (auto& term : terms) term->refresh_rows(rows);
     if (S2) {
       S2->refresh_rows(rows, second_order_stabilization_coefficients(cloud, G, 0.5, 1.0, area));
       refresh_second_order_stabilization(S0, *S2, *graph, rows);
@@ -239,9 +219,20 @@ TEST_CASE("refreshing the rows of broken bonds equals building without them", "[
         FB->tensor_terms(H.data(), Bb.data());
         CHECK(relative_difference(Ba, Bb) <= tolerance);
       }
-      const Rows ta = tangent_rows(G, C, cloud.volume, &*S, nullptr, sums_a);
-      const Rows tb = tangent_rows(B, C, cloud.volume, &SB, nullptr, sums_b);
-      CHECK(rows_difference(ta, tb) <= tolerance);
+      // Each level refreshed against the same level built without the bonds: S u and the
+      // tangent rows with their ADR bound.
+      for (std::size_t t = 0; t < terms.size(); ++t) {
+        INFO("assembly level " << int(levels[t]));
+        const auto TB = make_stabilization(cloud, B, modulus, levels[t]);
+        std::vector<double> Hw(H.size()), Sa(u.size()), Sb(u.size());
+        terms[t]->apply(u.data(), Hw.data(), Sa.data());
+        TB->apply(u.data(), Hw.data(), Sb.data());
+        CHECK(relative_difference(Sa, Sb) <= tolerance);
+        const Rows ta = tangent_rows(G, C, cloud.volume, terms[t].get(), sums_a);
+        const Rows tb = tangent_rows(B, C, cloud.volume, TB.get(), sums_b);
+        CHECK(rows_difference(ta, tb) <= tolerance);
+        CHECK(relative_difference(sums_a, sums_b) <= tolerance);
+      }
     } else {
       SecondOrderStabilization SB(cloud, B, second_order_stabilization_coefficients(cloud, B, 0.5, 1.0, area));
       const ScalarCsr S0b = assemble_second_order_stabilization(SB, cloud.size());
@@ -256,11 +247,14 @@ TEST_CASE("refreshing the rows of broken bonds equals building without them", "[
       CHECK(relative_difference(fa, fb) <= tolerance);
       CHECK(std::abs(S2->energy(w.data(), g.data(), h.data()) - SB.energy(w.data(), g.data(), h.data())) <=
             tolerance * SB.energy(w.data(), g.data(), h.data()));
-      const Rows ta = tangent_rows(G, C, cloud.volume, nullptr, &S0, sums_a);
-      const Rows tb = tangent_rows(B, C, cloud.volume, nullptr, &S0b, sums_b);
+      const auto Ta = stored_stabilization(G, S0, "S");
+      const auto Tb = stored_stabilization(B, S0b, "S");
+      CHECK_THROWS_AS(stored_stabilization(G, S0, "S")->refresh_rows(rows), std::logic_error);
+      const Rows ta = tangent_rows(G, C, cloud.volume, Ta.get(), sums_a);
+      const Rows tb = tangent_rows(B, C, cloud.volume, Tb.get(), sums_b);
       CHECK(rows_difference(ta, tb) <= tolerance);
+      CHECK(relative_difference(sums_a, sums_b) <= tolerance);
     }
-    CHECK(relative_difference(sums_a, sums_b) <= tolerance);
   }
 }
 

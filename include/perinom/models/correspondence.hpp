@@ -34,8 +34,7 @@
 #include "perinom/operators/nonlocal_operator.hpp"
 #include "perinom/operators/bond_weights.hpp"
 #include "perinom/operators/influence.hpp"
-#include "perinom/operators/fused_stabilization.hpp"
-#include "perinom/operators/stabilization.hpp"
+#include "perinom/operators/stabilization_term.hpp"
 #include "perinom/operators/tangent_rows.hpp"
 
 namespace perinom {
@@ -45,11 +44,8 @@ enum class Formulation { classical, improved, strong, consistent };
 /// Parses "classical", "improved", "strong", "consistent"; false if unknown.
 bool parse_formulation(const std::string& name, Formulation& f);
 
-/// fused: inside the products of G (FusedStabilization: one value per bond, the fastest;
-///        needs symmetric families, i.e. a horizon radius);
-/// assembled: S0 stored once (about 75 bytes per bond in 3-D);
-/// matrix_free: two extra bond passes (16 bytes per bond, the slowest);
-/// automatic: fused when the families are symmetric, assembled otherwise.
+/// The assembly level of S (stabilization_term.hpp), or automatic: fused when the families
+/// are symmetric, assembled otherwise.
 enum class StabilizationStorage { automatic, fused, assembled, matrix_free };
 /// Parses "auto", "fused", "assembled", "matrix_free"; false if unknown.
 bool parse_stabilization_storage(const std::string& name, StabilizationStorage& s);
@@ -76,6 +72,13 @@ struct CorrespondenceOptions {
   Kinematics kinematics = Kinematics::small_strain;  ///< of the plastic law (PlasticPoints)
   /// Pressures follow the deformed surface (follower_pressure.hpp); finite_rotation only.
   bool follower_pressure = false;
+};
+
+/// What CorrespondenceModel::break_bonds did.
+struct BondBreaks {
+  std::size_t broken = 0;             ///< bonds that died (a pair counts once)
+  std::vector<ParticleId> rows;       ///< the rows of G (and S) refreshed
+  std::vector<ParticleId> detached;   ///< every particle detached so far (no stress, no force)
 };
 
 class CorrespondenceModel : public TangentModel, public ModelHistory {
@@ -118,10 +121,10 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// The pointwise law between G and G^T, and the history it keeps.
   PointwiseLaw& law() { return *law_; }
   const PointwiseLaw& law() const { return *law_; }
-  /// The Drucker-Prager points the model built from options.plasticity, or nullptr (for the
-  /// load path's mode, LBC flags and checkpoints until they go through the law's history).
-  PlasticPoints* plastic() { return plastic_; }
-  const PlasticPoints* plastic() const { return plastic_; }
+  /// The law as Drucker-Prager points, or nullptr (for tests and diagnostics: the load path
+  /// goes through history()).
+  PlasticPoints* plastic() { return dynamic_cast<PlasticPoints*>(law_.get()); }
+  const PlasticPoints* plastic() const { return dynamic_cast<const PlasticPoints*>(law_.get()); }
   /// A law with history: evaluates every particle at u and commits (nothing otherwise).
   void commit(const double* u) override;
   /// The law's tangents at u (PointwiseLaw::tangents), used by visit_tangent_rows until the
@@ -129,17 +132,22 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// rows use the elastic moduli of the material.
   void prepare_tangent(const double* u) override;
 
+  /// Breaks the bonds (i, j) in both directions (irreversibly) and refreshes the rows of G
+  /// and S they touch, so that force, energy and tangent rows are those of a model built
+  /// without them (tests/models/test_bond_breaks.cpp). A particle whose live family no longer
+  /// spans R^d is detached (NonlocalOperator::detach_quality). The surface band of the
+  /// improved and strong formulations stays that of the intact body. Throws
+  /// std::out_of_range for a particle index beyond the cloud, and std::logic_error (before
+  /// changing anything) for the consistent formulation (G~ comes from a global correction)
+  /// and for the second-order stabilization (stored without its fit).
+  BondBreaks break_bonds(const std::vector<std::pair<ParticleId, ParticleId>>& bonds);
+
   const NonlocalOperator& G() const { return G_; }
   /// 1 or 2: the order of the fit G comes from (CorrespondenceOptions::operator_order).
   int operator_order() const { return order_; }
-  /// The first-order stabilization operator (matrix-free), or nullptr when C_hg = 0 or with
-  /// operator order 2 (whose S is assembled_stabilization()).
-  const Stabilization* stabilization() const { return S_ ? &*S_ : nullptr; }
-  /// True when S is applied inside the products of G (FusedStabilization).
-  bool fused_stabilization() const { return F_.has_value(); }
-  /// The stored S0, or nullptr (C_hg = 0, or a fused or matrix-free stabilization); with
-  /// operator order 2 the second-order S.
-  const ScalarCsr* assembled_stabilization() const { return S_assembled_ ? &*S_assembled_ : nullptr; }
+  /// S at its assembly level, or nullptr when C_hg = 0. With operator order 2, or the
+  /// consistent formulation, S is stored assembled without the operator it came from.
+  const StabilizationTerm* stabilization() const { return S_.get(); }
   const LinearElastic& material() const { return material_; }
   const std::vector<double>& volume() const { return volume_; }
   Formulation formulation() const { return formulation_; }
@@ -154,17 +162,18 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   // What drivers and the load path ask of any model (correspondence_output.cpp): the fields
   // displacement, stress, von_mises, mean_stress, volume; surface_stress and
   // surface_von_mises with boundary facets; subregion_E and surface for the improved and
-  // strong formulations; eq_plastic_strain, plastic_strain and yielded with plasticity;
+  // strong formulations; the law's fields other than stress (PointwiseLaw::fields: with
+  // plasticity eq_plastic_strain, plastic_strain, yielded, lbc_flagged);
   // for probes displacement_gradient and equivalent_strain, and stress_gradient.
-  ModelHistory* history() override { return plastic_ ? this : nullptr; }
+  ModelHistory* history() override { return law_->history() ? this : nullptr; }
   std::vector<OutputField> output_fields(const double* u, bool probe_fields = false,
                                          bool gradients = false) const override;
   std::vector<double> stress_measure(const double* u) const override;
   std::vector<PlanLine> plan() const override;
   std::vector<std::string> not_assembled() const override;
 
-  // ModelHistory, through plastic() (meaningful with plasticity only; history() is nullptr
-  // otherwise). commit(u) is the one above.
+  // ModelHistory, through the law's LawHistory (only for a law with one: history() is
+  // nullptr otherwise). commit(u) is the one above.
   void set_history_mode(HistoryMode mode) override;
   void commit_trial() override;
   std::size_t flag_violations(double tolerance) override;
@@ -183,15 +192,12 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   LinearElastic material_;
   Surface surface_;
   std::vector<double> volume_;
+  std::shared_ptr<BondGraph> graph_;  // G's bond graph, which break_bonds changes
   NonlocalOperator G_;
-  std::optional<Stabilization> S_;
-  std::optional<ScalarCsr> S_assembled_;  // S0 stored (storage assembled)
-  std::optional<FusedStabilization> F_;   // S inside G's products (storage fused)
+  std::unique_ptr<StabilizationTerm> S_;
   std::vector<double> H_, Q_, P_;  // workspaces: grad u, V . P, and P for strong rows
-  std::vector<double> B_, r_, Su_;  // workspaces of the stabilization: B (or T), r, S u
-  std::vector<double> lap_;          // fused: the weighted Laplacian of u
+  std::vector<double> Su_;         // S u (the energy; the band's G^T(-B) for strong rows)
   std::unique_ptr<PointwiseLaw> law_;
-  PlasticPoints* plastic_ = nullptr;  // law_, when built from options.plasticity
   std::vector<double> C_;             // the law's tangents at the last prepare_tangent
   std::size_t C_stride_ = 0;          // between particles in C_ (0: one for all)
   BoundaryTrace trace_;

@@ -21,17 +21,12 @@ struct HistoryState {
   std::vector<std::uint8_t> flags;
 };
 
-/// Implemented by models with history (CorrespondenceModel with a Drucker-Prager law);
-/// Model::history() returns nullptr for the others. solve_load_path needs nothing else.
-class ModelHistory {
+/// The states of a law with history as a load path drives them (PlasticPoints implements
+/// it; PointwiseLaw::history() hands it out). A model adds the evaluation at u (ModelHistory).
+class LawHistory {
  public:
-  virtual ~ModelHistory() = default;
+  virtual ~LawHistory() = default;
   virtual void set_history_mode(HistoryMode mode) = 0;
-  /// Evaluates every particle at u (m) by the current mode and commits the result.
-  virtual void commit(const double* u) = 0;
-  /// Commits the trial states the last internal_force kept, without evaluating again (the
-  /// explicit scheme that commits after every iteration).
-  virtual void commit_trial() = 0;
   /// Flags every unflagged particle whose trial state violates the yield condition by more
   /// than `tolerance` (relative to the yield stress); returns how many were flagged now.
   virtual std::size_t flag_violations(double tolerance) = 0;
@@ -45,6 +40,17 @@ class ModelHistory {
   virtual void restore_history(const HistoryState& state) = 0;
   /// Back to the virgin state: no plastic strain, no flag.
   virtual void reset_history() = 0;
+};
+
+/// Implemented by models with history (CorrespondenceModel with a law that has one);
+/// Model::history() returns nullptr for the others. solve_load_path needs nothing else.
+class ModelHistory : public LawHistory {
+ public:
+  /// Evaluates every particle at u (m) by the current mode and commits the result.
+  virtual void commit(const double* u) = 0;
+  /// Commits the trial states the last internal_force kept, without evaluating again (the
+  /// explicit scheme that commits after every iteration).
+  virtual void commit_trial() = 0;
 };
 
 }  // namespace perinom

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "perinom/materials/drucker_prager.hpp"
+#include "perinom/models/model_history.hpp"
 #include "perinom/models/pointwise_law.hpp"
 
 namespace perinom {
@@ -34,7 +35,7 @@ enum class PlasticMode { lbc, return_map };
 ///   rule through all of these (the polar rotations' derivatives included).
 enum class Kinematics { small_strain, finite_rotation };
 
-class PlasticPoints final : public PointwiseLaw {
+class PlasticPoints final : public PointwiseLaw, public LawHistory {
  public:
   /// One particle's state: the law's state and the total strain it belongs to.
   struct Point {
@@ -81,7 +82,17 @@ class PlasticPoints final : public PointwiseLaw {
   /// LBC correction: flags every unflagged particle whose kept trial violates the yield
   /// condition, f > tolerance * (A I1 + B) m (a relative tolerance on the yield stress).
   /// Returns how many were flagged now.
-  std::size_t flag_violations(double tolerance);
+  std::size_t flag_violations(double tolerance) override;
+
+  // LawHistory (plastic_history.cpp): flagged = PlasticMode::lbc; a checkpoint holds per
+  // particle sigma (9), eps_p (9), xi and eps (9), and the flags.
+  LawHistory* history() override { return this; }
+  void set_history_mode(HistoryMode mode) override;
+  std::vector<double> history_variable() const override;
+  std::size_t values_per_particle() const override { return 28; }
+  HistoryState save_history() const override;
+  void restore_history(const HistoryState& state) override;
+  void reset_history() override { reset(); }
   /// Makes the kept trial states the committed ones.
   void commit() override;
   /// The flagged particles.

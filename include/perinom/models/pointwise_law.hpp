@@ -21,6 +21,8 @@
 
 namespace perinom {
 
+class LawHistory;  // models/model_history.hpp
+
 /// One field a law offers for output: `components` values per particle.
 struct LawField {
   std::string name;
@@ -55,6 +57,9 @@ class PointwiseLaw {
   virtual void cauchy(const double* H, double* sigma) const = 0;
   /// Makes the trial states the committed ones (nothing for a law without history).
   virtual void commit() = 0;
+  /// The states as a load path drives them (modes, flags, checkpoints), or nullptr for a law
+  /// without history.
+  virtual LawHistory* history() { return nullptr; }
   /// Bytes held by the per-particle states.
   virtual std::size_t memory_bytes() const = 0;
 

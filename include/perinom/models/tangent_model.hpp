@@ -6,14 +6,15 @@
 
 #include "perinom/core/types.hpp"
 #include "perinom/models/model.hpp"
+#include "perinom/operators/row_accumulator.hpp"
 
 namespace perinom {
 
 /// visit(i, cols, blocks): the d rows of particle i (d = dofs_per_particle()); cols the
 /// particles the rows couple to, sorted; blocks the d x d block of each column, row-major
 /// per column (blocks[(q d + a) d + b] = dF_{i a} / du_{cols[q] b}).
-using TangentRowVisitor =
-    std::function<void(std::size_t, const std::vector<ParticleId>&, const std::vector<double>&)>;
+/// (for_each_block_row visits rows the same way.)
+using TangentRowVisitor = BlockRowVisitor;
 
 /// A model whose stiffness K = dF/du can be visited row by row (StaticSystem assembles the
 /// Jacobian from these rows). visit_tangent_rows may call visit concurrently for distinct

@@ -1,6 +1,8 @@
 #pragma once
-/// @file A sparse accumulator: gathers the entries of one matrix row in any order.
+/// @file A sparse accumulator: gathers the entries of one matrix row in any order; and the
+/// one loop that assembles rows with it (stored S, tangent rows of every model).
 #include <algorithm>
+#include <functional>
 #include <vector>
 
 #include "perinom/core/types.hpp"
@@ -52,5 +54,19 @@ class RowAccumulator {
   std::vector<ParticleId> cols_, sorted_cols_;
   std::vector<int> order_;
 };
+
+/// Adds the contributions of row i to acc (columns may repeat).
+using RowFill = std::function<void(std::size_t, RowAccumulator&)>;
+/// visit(i, cols, blocks): row i's columns, sorted, and one block per column (blocks[k *
+/// block + c] for cols[k]).
+using BlockRowVisitor =
+    std::function<void(std::size_t, const std::vector<ParticleId>&, const std::vector<double>&)>;
+
+/// Visits rows 0 .. rows - 1 of a sparse matrix of `columns` block columns, `block` values per
+/// block (dofs^2 for dofs unknowns per particle), in parallel: each thread takes its fill
+/// from make_fill() (called once per thread, concurrently; so a fill may keep scratch of its
+/// own) and its own accumulator; visit is called concurrently for distinct rows.
+void for_each_block_row(std::size_t rows, std::size_t columns, int block, const std::function<RowFill()>& make_fill,
+                        const BlockRowVisitor& visit);
 
 }  // namespace perinom

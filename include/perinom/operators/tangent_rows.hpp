@@ -6,7 +6,8 @@
 
 #include "perinom/core/types.hpp"
 #include "perinom/operators/nonlocal_operator.hpp"
-#include "perinom/operators/stabilization.hpp"
+#include "perinom/operators/row_accumulator.hpp"
+#include "perinom/operators/stabilization_term.hpp"
 
 namespace perinom {
 
@@ -33,15 +34,13 @@ struct StrongRows {
 /// given) takes its sources from row i of G instead: -V_i G_b[i][m] for m in {i} + H_i,
 /// plus V_i m_i[b] at m = i. Rows are computed in parallel;
 /// visit is called concurrently from several threads with distinct i.
-/// Cost: sum over m in {i} + H'_i of |H_m| d^3 per row. A stored S0 (e.g. the second-order
-/// stabilization's) may be given in place of S; its rows are added the same way.
+/// Cost: sum over m in {i} + H'_i of |H_m| d^3 per row. S (any level, or null) adds its rows
+/// of S0 on the diagonals of the blocks.
 /// `local` (N x d^3, or null) adds a term of row i that depends on grad u at i alone:
 /// K_(i a),(j c) += sum_e local_i[(a d + c) d + e] G_e[i][j] for j in {i} + H_i (follower
 /// pressures).
 void for_each_tangent_row(
-    const NonlocalOperator& G, const PointwiseTangent& tangent, const Stabilization* S,
-    const std::function<void(std::size_t, const std::vector<ParticleId>&,
-                             const std::vector<double>&)>& visit,
-    const StrongRows* strong = nullptr, const ScalarCsr* S0 = nullptr, const double* local = nullptr);
+    const NonlocalOperator& G, const PointwiseTangent& tangent, const StabilizationTerm* S,
+    const BlockRowVisitor& visit, const StrongRows* strong = nullptr, const double* local = nullptr);
 
 }  // namespace perinom

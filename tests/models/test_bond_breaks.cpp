@@ -1,0 +1,154 @@
+// Bonds broken through the model (CorrespondenceModel::break_bonds): force, energy, tangent
+// rows and the ADR stiffness bound equal those of a model built without the bonds, at every
+// stabilization storage; a particle that loses its family is detached and carries nothing.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <set>
+#include <stdexcept>
+
+#include "../support/broken_bonds.hpp"
+#include "../support/clouds.hpp"
+#include "perinom/geometry/surface.hpp"
+#include "perinom/models/correspondence.hpp"
+#include "perinom/neighbors/search.hpp"
+
+using namespace perinom;
+
+namespace {
+
+LinearElastic material(int dim) {
+  LinearElastic m;
+  m.E = 30e6;
+  m.nu = 0.25;
+  m.density = 2000;
+  m.dim = dim;
+  m.plane = dim == 2 ? PlaneCondition::strain : PlaneCondition::none;
+  return m;
+}
+
+double relative(const std::vector<double>& a, const std::vector<double>& b) {
+  REQUIRE(a.size() == b.size());
+  double diff = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    REQUIRE(std::isfinite(a[k]));
+    diff = std::max(diff, std::abs(a[k] - b[k]));
+  }
+  return diff / std::max(test::max_abs(b), 1e-300);
+}
+
+/// The tangent rows as (row, column) -> block, and their largest relative difference.
+using Rows = std::map<std::pair<std::size_t, ParticleId>, std::vector<double>>;
+
+Rows rows_of(const CorrespondenceModel& m) {
+  Rows rows;
+  const int d = m.dofs_per_particle();
+  m.visit_tangent_rows([&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
+#pragma omp critical
+    for (std::size_t q = 0; q < cols.size(); ++q)
+      rows[{i, cols[q]}] = std::vector<double>(blocks.begin() + q * d * d, blocks.begin() + (q + 1) * d * d);
+  });
+  return rows;
+}
+
+double rows_difference(const Rows& a, const Rows& b) {
+  double diff = 0.0, scale = 0.0;
+  for (const auto* x : {&a, &b})
+    for (const auto& [key, v] : *x) {
+      const Rows& y = x == &a ? b : a;
+      const auto it = y.find(key);
+      for (std::size_t c = 0; c < v.size(); ++c) {
+        diff = std::max(diff, std::abs(v[c] - (it == y.end() ? 0.0 : it->second[c])));
+        scale = std::max(scale, std::abs(v[c]));
+      }
+    }
+  return diff / std::max(scale, 1e-300);
+}
+
+BoxGeometry box(int d, int side) {
+  BoxGeometry b;
+  b.dim = d;
+  for (int a = 0; a < d; ++a) b.max[a] = side;
+  return b;
+}
+
+constexpr double tolerance = 1e-13;
+
+}  // namespace
+
+TEST_CASE("a model whose bonds break equals a model built without them", "[models][refresh]") {
+  using Storage = StabilizationStorage;
+  for (const int d : {2, 3})
+    for (const bool knn : {false, true})
+      for (const Formulation form : {Formulation::classical, Formulation::improved})
+        for (const Storage storage : {Storage::fused, Storage::assembled, Storage::matrix_free}) {
+          if (knn && storage == Storage::fused) continue;  // fused needs symmetric families
+          const int side = d == 2 ? 10 : 6;
+          const PointCloud cloud = test::lattice(d, side, 0.3);
+          const Families f = knn ? knn_families(cloud, d == 2 ? 16 : 36) : radius_families(cloud, 2.515);
+          const Surface surface = find_surface(box(d, side), cloud, 2.0);
+          CorrespondenceOptions o{Influence::inverse_square, 0.5, form};
+          o.stabilization_storage = storage;
+          CorrespondenceModel model(cloud, f, material(d), o, surface);
+          const std::vector<test::Bond> breaks = test::random_bonds(f, cloud.size() / 8, 17);
+          const BondBreaks report = model.break_bonds(breaks);
+          INFO("dim " << d << (knn ? " knn" : " radius") << " formulation " << int(form) << " storage "
+                      << int(storage) << ": " << report.broken << " bonds broken, " << report.rows.size() << " rows");
+          REQUIRE(report.broken == breaks.size());
+          REQUIRE(report.detached.empty());
+          // Breaking again changes nothing.
+          CHECK(model.break_bonds(breaks).broken == 0);
+
+          const Families f2 = test::without(f, std::set<test::Bond>(breaks.begin(), breaks.end()));
+          CorrespondenceModel built(cloud, f2, material(d), o, surface);
+          const auto u = test::random_field(model.dofs(), 1e-4, 21);
+          std::vector<double> fa(u.size()), fb(u.size());
+          model.internal_force(u.data(), fa.data());
+          built.internal_force(u.data(), fb.data());
+          CHECK(relative(fa, fb) <= tolerance);
+          CHECK(std::abs(model.energy(u.data()) - built.energy(u.data())) <= tolerance * built.energy(u.data()));
+          CHECK(rows_difference(rows_of(model), rows_of(built)) <= tolerance);
+          CHECK(relative(model.stiffness_row_sums(), built.stiffness_row_sums()) <= tolerance);
+        }
+}
+
+TEST_CASE("a particle whose bonds all break is detached: no stress, no force, no NaN", "[models][refresh]") {
+  for (const int d : {2, 3}) {
+    const int side = d == 2 ? 9 : 6;
+    const PointCloud cloud = test::lattice(d, side, 0.2);
+    const Families f = radius_families(cloud, 2.015);
+    CorrespondenceModel model(cloud, f, material(d), {Influence::inverse_square, 0.5, Formulation::classical});
+    const std::size_t p = cloud.size() / 2;
+    std::vector<test::Bond> breaks;
+    for (Offset k = f.begin(p); k < f.end(p); ++k) breaks.emplace_back(static_cast<ParticleId>(p), f.neighbors[k]);
+    const BondBreaks report = model.break_bonds(breaks);
+    INFO("dim " << d);
+    REQUIRE(report.detached == std::vector<ParticleId>{static_cast<ParticleId>(p)});
+    const auto u = test::random_field(model.dofs(), 1e-4, 5);
+    std::vector<double> force(u.size()), sigma;
+    model.internal_force(u.data(), force.data());
+    for (const double v : force) REQUIRE(std::isfinite(v));
+    for (int a = 0; a < d; ++a) CHECK(force[p * d + a] == 0.0);
+    model.stress3(u.data(), sigma);
+    for (int k = 0; k < 9; ++k) CHECK(sigma[p * 9 + k] == 0.0);
+    CHECK(std::isfinite(model.energy(u.data())));
+  }
+}
+
+TEST_CASE("break_bonds refuses what it cannot refresh, before changing anything", "[models][refresh]") {
+  const PointCloud cloud = test::lattice(2, 8, 0.2);
+  const Families f = radius_families(cloud, 2.515);
+  CorrespondenceOptions o{Influence::inverse_square, 0.5, Formulation::classical};
+  o.operator_order = 2;
+  CorrespondenceModel second(cloud, f, material(2), o);
+  const test::Bond bond{0, f.neighbors[f.begin(0)]};
+  CHECK_THROWS_AS(second.break_bonds({bond}), std::logic_error);
+  CHECK(second.G().graph().broken() == 0);
+  o.operator_order = 1;
+  CorrespondenceModel first(cloud, f, material(2), o);
+  CHECK_THROWS_AS(first.break_bonds({{0, static_cast<ParticleId>(cloud.size())}}), std::out_of_range);
+  CHECK(first.G().graph().broken() == 0);
+  CHECK(first.break_bonds({bond}).broken == 1);
+}
