@@ -10,7 +10,7 @@ void read_plate_model(Fields& f, Scene& s) {
   f.finish();
 }
 
-void read_plate_boundary(Fields& f, BoundarySpec& b) {
+void read_plate_boundary(Fields& f, const Scene&, BoundarySpec& b) {
   for (const char* k : {"fix", "displacement", "traction", "at"})
     if (f.has(k)) f.fail(k, "a thin_plate boundary item takes region, support and pressure");
   if (f.has("support")) {

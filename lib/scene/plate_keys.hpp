@@ -9,7 +9,7 @@ namespace perinom::detail {
 void read_plate_model(Fields& f, Scene& s);
 /// A plate's boundary item: region, `support` (simply_supported | clamped, on a side) and
 /// `pressure` (transverse, on the nodes of any region); the elasticity keys are refused.
-void read_plate_boundary(Fields& f, BoundarySpec& b);
+void read_plate_boundary(Fields& f, const Scene& s, BoundarySpec& b);
 /// What a plate needs of the sections read before the model: dimension 2, a box without
 /// holes, no jitter, an explicit geometry.thickness (the plate's), a linear elastic material
 /// without a plane condition.

@@ -36,6 +36,7 @@ std::vector<ModelEntry> make_models() {
   correspondence.read = detail::read_correspondence_model;
   correspondence.check = detail::check_body_formulation;
   correspondence.build = build_correspondence_problem;
+  correspondence.read_boundary = detail::read_body_boundary;
   correspondence.memory = [](const Scene& s) {
     const int d = s.dim;
     MemoryRates r;
@@ -50,6 +51,12 @@ std::vector<ModelEntry> make_models() {
   plate.check = detail::check_plate_scene;
   plate.build = build_plate_problem;
   plate.memory = [](const Scene&) { return MemoryRates{157.0, 0.0, true}; };
+  plate.read_boundary = detail::read_plate_boundary;
+  plate.probe_field = "deflection";
+  plate.probe_field_only = true;
+  plate.stages = false;
+  plate.load_path_schemes = false;
+  plate.rigid_body = false;
   return {correspondence, plate};
 }
 

@@ -3,7 +3,7 @@
 #include <set>
 
 #include "perinom/core/error.hpp"
-#include "plate_keys.hpp"
+#include "perinom/scene/registry.hpp"
 #include "scene_sections.hpp"
 
 namespace perinom::detail {
@@ -92,30 +92,30 @@ std::vector<BoundarySpec> read_boundary(const std::vector<YAML::Node>& items, co
       }
       d.finish();
     }
-    if (s.thin_plate()) {
-      detail::read_plate_boundary(f, b);
-      out.push_back(b);
-      continue;
-    }
-    if (f.has("support")) f.fail("support", "edge supports belong to model.type thin_plate (here: fix or displacement)");
-    if (f.has("traction")) b.traction = f.vector("traction", s.dim);
-    if (f.has("pressure")) b.pressure = f.number("pressure");
-    const std::string at = f.text("at", "layer");
-    if (at != "layer" && at != "face") f.fail("at", "must be layer or face");
-    b.at_face = at == "face";
-    const bool surface = b.region.is_side || b.region.is_group();
-    if (b.at_face && !surface) f.fail("at", "face needs a side region (top, left, ...) or a group ({group: NAME})");
-    if ((b.traction || b.pressure) && !surface)
-      f.fail("region", "a traction or pressure acts on a side of the box (top, left, ...) or a group of facets ({group: NAME})");
-    f.finish();
+    find_model(s.model.type)->read_boundary(f, s, b);
     out.push_back(b);
   }
   return out;
 }
 
+void read_body_boundary(Fields& f, const Scene& s, BoundarySpec& b) {
+  if (f.has("support")) f.fail("support", "edge supports belong to model.type thin_plate (here: fix or displacement)");
+  if (f.has("traction")) b.traction = f.vector("traction", s.dim);
+  if (f.has("pressure")) b.pressure = f.number("pressure");
+  const std::string at = f.text("at", "layer");
+  if (at != "layer" && at != "face") f.fail("at", "must be layer or face");
+  b.at_face = at == "face";
+  const bool surface = b.region.is_side || b.region.is_group();
+  if (b.at_face && !surface) f.fail("at", "face needs a side region (top, left, ...) or a group ({group: NAME})");
+  if ((b.traction || b.pressure) && !surface)
+    f.fail("region", "a traction or pressure acts on a side of the box (top, left, ...) or a group of facets ({group: NAME})");
+  f.finish();
+}
+
 void read_stages(const std::vector<YAML::Node>& items, const std::string& source, Scene& s) {
-  if (!items.empty() && s.thin_plate())
-    throw InputError(detail::where(source, items[0]) + "stages: a thin_plate is loaded in one stage (solver.load_steps)");
+  if (!items.empty() && !find_model(s.model.type)->stages)
+    throw InputError(detail::where(source, items[0]) + "stages: a " + s.model.type +
+                     " is loaded in one stage (solver.load_steps)");
   for (std::size_t k = 0; k < items.size(); ++k) {
     const std::string key = "stages[" + std::to_string(k) + "]";
     Fields f(items[k], key, source);
@@ -150,10 +150,13 @@ void read_probes(const std::vector<YAML::Node>& items, const std::string& source
     } else {
       p.point = f.vector("point", s.dim);
     }
-    p.field = f.text("field", s.thin_plate() ? "deflection" : "displacement");
-    if ((p.field == "deflection") != s.thin_plate())
-      f.fail("field", s.thin_plate() ? "a thin_plate probe measures the deflection (field: deflection)"
-                                     : "deflection is the field of a thin_plate (model.type: thin_plate)");
+    const ModelEntry& model = *find_model(s.model.type);
+    p.field = f.text("field", model.probe_field);
+    if (model.probe_field_only && p.field != model.probe_field)
+      f.fail("field", "a " + model.name + " probe measures the " + model.probe_field + " (field: " + model.probe_field + ")");
+    for (const ModelEntry& other : model_registry())
+      if (other.probe_field_only && &other != &model && p.field == other.probe_field)
+        f.fail("field", p.field + " is the field of a " + other.name + " (model.type: " + other.name + ")");
     p.reconstruct = f.boolean("reconstruct", p.reconstruct);
     if (p.reconstruct && (p.is_line || (p.field != "displacement" && p.field != "stress" &&
                                          p.field != "von_mises" && p.field != "mean_stress")))

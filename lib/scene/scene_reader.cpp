@@ -247,8 +247,8 @@ void read_solver(Fields f, Scene& s) {
   if (v.type == "verlet" && s.plasticity)
     f.fail("type", "verlet is not available with a drucker_prager material (use lbc, adr or newton)");
   if (v.type == "verlet" && !s.stages.empty()) f.fail("type", "verlet does not run load stages (use lbc, adr or newton)");
-  if (s.thin_plate() && v.type == "lbc")
-    f.fail("type", "a thin_plate is elastic: solve it by adr or newton (static) or verlet (dynamic)");
+  if (!find_model(s.model.type)->load_path_schemes && find_solver(v.type) && !find_solver(v.type)->single)
+    f.fail("type", "a " + s.model.type + " is elastic: solve it by adr or newton (static) or verlet (dynamic)");
   if (!s.stages.empty() && f.has("load_steps")) f.fail("load_steps", "with stages, each stage sets its steps");
   const bool newton = v.type == "newton";
   v.tolerance = f.number("tolerance", v.tolerance);
@@ -294,7 +294,8 @@ void read_constraints(Fields& top, Scene& s) {
   s.constraints = top.text("constraints", "none");
   if (s.constraints != "none" && s.constraints != "rigid_body") top.fail("constraints", "must be none or rigid_body");
   if (s.constraints == "none") return;
-  if (s.thin_plate()) top.fail("constraints", "rigid_body is for correspondence models (a plate is held by its edges)");
+  if (!find_model(s.model.type)->rigid_body)
+    top.fail("constraints", "rigid_body does not apply to a " + s.model.type + " (its boundary holds it)");
   auto constrains = [&](const BoundarySpec& b) {
     for (int a = 0; a < s.dim; ++a)
       if (b.fix[a] || b.displacement[a]) return true;
@@ -315,7 +316,7 @@ void read_constraints(Fields& top, Scene& s) {
 /// whatever the step (issue 14; solvers/spectrum.hpp measures them). Verlet refuses them
 /// unless solver.allow_unstable.
 void refuse_unstable_dynamics(const YAML::Node& root, const Scene& s) {
-  if (s.solver.type != "verlet" || s.solver.allow_unstable || s.thin_plate()) return;
+  if (s.solver.type != "verlet" || s.solver.allow_unstable) return;
   if (s.model.formulation != "improved" && s.model.formulation != "strong") return;
   const YAML::Node model = root["model"];
   throw InputError(detail::where(s.source, model ? model["formulation"] : model) + "model.formulation: " +

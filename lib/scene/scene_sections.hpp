@@ -19,6 +19,9 @@ void read_stages(const std::vector<YAML::Node>& items, const std::string& source
 /// model.type correspondence: its keys (registry.hpp), and what it needs of a body from files.
 void read_correspondence_model(Fields& f, Scene& s);
 void check_body_formulation(const YAML::Node& root, const Scene& s);
+/// A correspondence model's boundary item after region, fix and displacement: traction,
+/// pressure and `at` (layer | face).
+void read_body_boundary(Fields& f, const Scene& s, BoundarySpec& b);
 /// `probes`.
 void read_probes(const std::vector<YAML::Node>& items, const std::string& source, Scene& s);
 

@@ -374,6 +374,16 @@ TEST_CASE("thin_plate keys are checked, each by its key", "[cli][plate]") {
   SECTION("lbc has nothing to correct on an elastic plate") {
     require_rejected(plate_scene + "solver: {type: lbc}\n", {"solver.type: a thin_plate is elastic: solve it by adr or newton"});
   }
+  SECTION("a plate takes no stages and no rigid-body constraint (its registry row says so)") {
+    require_rejected(plate_scene + "constraints: rigid_body\n",
+                     {"constraints: rigid_body does not apply to a thin_plate"});
+    require_rejected(plate_scene + "stages:\n  - {name: one, boundary: []}\n",
+                     {"stages: a thin_plate is loaded in one stage"});
+  }
+  SECTION("a deflection probe outside a plate scene") {
+    const std::string s = with(tiny_scene, "    component: y\n", "    field: deflection\n");
+    require_rejected(s, {at_line(s, "field: deflection", "probes[0].field: deflection is the field of a thin_plate")});
+  }
   SECTION("Newton solves a plate, and checks ADR's") {
     for (const char* solver : {"solver: {type: newton}\n", "solver: {type: adr, check: newton}\n"}) {
       ScratchDir dir;

@@ -52,6 +52,18 @@ struct ModelEntry {
   /// Builds the problem: particles, families, the model, loadings, probes.
   std::function<Problem(const Scene& scene, PhaseTimer* timer)> build;
   std::function<MemoryRates(const Scene& scene)> memory;
+  /// Reads the model's keys of a boundary item into b (region, fix and displacement are read
+  /// already) and finishes the item (strict).
+  std::function<void(detail::Fields& item, const Scene& scene, BoundarySpec& b)> read_boundary;
+  /// The field a probe measures when it names none. With probe_field_only, the model's
+  /// probes measure that field alone, and no other model's probes may name it.
+  std::string probe_field = "displacement";
+  bool probe_field_only = false;
+  /// Whether load stages, load-path schemes (solver.type lbc) and constraints: rigid_body
+  /// apply to it (the messages for a model that takes none name it: "a thin_plate is ...").
+  bool stages = true;
+  bool load_path_schemes = true;
+  bool rigid_body = true;
 };
 
 /// The registered models, in the order messages list them.

@@ -143,7 +143,6 @@ struct Scene {
 
   /// Solved as a quasi-static load path (solvers/load_path.hpp): a plastic material,
   /// stages, or solver.type lbc.
-  bool thin_plate() const { return model.type == "thin_plate"; }
   bool load_path() const { return plasticity.has_value() || !stages.empty() || solver.type == "lbc"; }
 };
 
