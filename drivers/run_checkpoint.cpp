@@ -6,10 +6,8 @@
 #include "perinom/scene/registry.hpp"
 
 namespace perinom::cli {
-namespace {
 
-/// What the checkpoint was written for, and the run's progress.
-io::Checkpoint common(const Problem& p, const RunProgress& run) {
+io::Checkpoint run_records(const Problem& p, const RunProgress& run) {
   io::Checkpoint c;
   c.put("scene", p.scene.canonical);
   c.put_integer("particles", static_cast<std::int64_t>(p.physics().particles()));
@@ -29,59 +27,12 @@ io::Checkpoint common(const Problem& p, const RunProgress& run) {
   return c;
 }
 
-/// A record of whole numbers as int (a stage, a step), refusing values an int does not hold.
-int small(const io::Checkpoint& c, const std::string& name) {
-  const std::int64_t v = c.integer(name);
-  if (v < 0 || v > 1000000000) throw InputError(c.source + ": the checkpoint's " + name + " is out of range");
-  return static_cast<int>(v);
-}
-
-}  // namespace
-
 std::uint64_t positions_fingerprint(const Problem& p) {
   return io::fnv1a64(p.cloud.x.data(), p.cloud.x.size() * sizeof(double));
 }
 
 std::string checkpoint_solver(const Scene& scene) {
   return scene.load_path() ? "load_path" : solver_of(scene).checkpoint_state;
-}
-
-io::Checkpoint checkpoint_records(const Problem& p, const RunProgress& run, const AdrState& s) {
-  io::Checkpoint c = common(p, run);
-  c.put_integer("adr.load_step", s.load_step);
-  c.put_integer("adr.iterations", s.iterations);
-  c.put_real("adr.residual", s.residual);
-  c.put_real("adr.displacement_change", s.displacement_change);
-  c.put("adr.u", s.u), c.put("adr.v", s.v), c.put("adr.f", s.f), c.put("adr.f_old", s.f_old);
-  c.put("adr.inv_lambda", s.inv_lambda), c.put("adr.history", s.history);
-  return c;
-}
-
-io::Checkpoint checkpoint_records(const Problem& p, const RunProgress& run, const VerletState& s) {
-  io::Checkpoint c = common(p, run);
-  c.put_integer("verlet.step", s.step);
-  c.put_real("verlet.time", s.time), c.put_real("verlet.dt", s.dt), c.put_real("verlet.work", s.work);
-  c.put_real("verlet.e0", s.e0), c.put_real("verlet.e_max", s.e_max), c.put_real("verlet.w_max", s.w_max);
-  c.put("verlet.u", s.u), c.put("verlet.v", s.v), c.put("verlet.a", s.a), c.put("verlet.fint", s.fint);
-  c.put("verlet.multipliers", s.multipliers), c.put("verlet.history", s.history);
-  return c;
-}
-
-io::Checkpoint checkpoint_records(const Problem& p, const RunProgress& run, const LoadPathState& s) {
-  io::Checkpoint c = common(p, run);
-  c.put_integer("load_path.stage", s.stage);
-  c.put_integer("load_path.step", s.step);
-  c.put_integer("load_path.iterations", s.iterations);
-  c.put_real("load_path.residual", s.residual);
-  c.put("load_path.u", s.u), c.put("load_path.u_prev", s.u_prev);
-  std::vector<double> value0;
-  std::vector<std::int64_t> sizes;
-  for (const auto& v : s.stage_value0) value0.insert(value0.end(), v.begin(), v.end()), sizes.push_back(std::int64_t(v.size()));
-  c.put("load_path.stage_value0", std::move(value0)), c.put("load_path.stage_value0_sizes", std::move(sizes));
-  c.put("load_path.plastic", s.plastic);
-  c.put("load_path.flags", std::vector<std::int64_t>(s.flags.begin(), s.flags.end()));
-  c.put("load_path.history", s.history);
-  return c;
 }
 
 RunProgress run_progress(const io::Checkpoint& c) {
@@ -107,54 +58,6 @@ RunProgress run_progress(const io::Checkpoint& c) {
   for (std::size_t k = 0; columns > 0 && k < rows.size(); k += std::size_t(columns))
     run.probe_rows.emplace_back(rows.begin() + k, rows.begin() + k + columns);
   return run;
-}
-
-AdrState adr_state(const io::Checkpoint& c, std::size_t n) {
-  AdrState s;
-  s.load_step = small(c, "adr.load_step");
-  s.iterations = c.integer("adr.iterations");
-  s.residual = c.real("adr.residual");
-  s.displacement_change = c.real("adr.displacement_change");
-  s.u = c.reals("adr.u", n), s.v = c.reals("adr.v", n), s.f = c.reals("adr.f", n), s.f_old = c.reals("adr.f_old", n);
-  s.inv_lambda = c.reals("adr.inv_lambda", n), s.history = c.reals("adr.history");
-  return s;
-}
-
-VerletState verlet_state(const io::Checkpoint& c, std::size_t n) {
-  VerletState s;
-  s.step = c.integer("verlet.step");
-  s.time = c.real("verlet.time"), s.dt = c.real("verlet.dt"), s.work = c.real("verlet.work");
-  s.e0 = c.real("verlet.e0"), s.e_max = c.real("verlet.e_max"), s.w_max = c.real("verlet.w_max");
-  s.u = c.reals("verlet.u", n), s.v = c.reals("verlet.v", n), s.a = c.reals("verlet.a", n);
-  s.fint = c.reals("verlet.fint", n), s.multipliers = c.reals("verlet.multipliers"), s.history = c.reals("verlet.history");
-  return s;
-}
-
-LoadPathState load_path_state(const io::Checkpoint& c, std::size_t n, std::size_t history_values) {
-  LoadPathState s;
-  s.stage = small(c, "load_path.stage"), s.step = small(c, "load_path.step");
-  s.iterations = c.integer("load_path.iterations");
-  s.residual = c.real("load_path.residual");
-  s.u = c.reals("load_path.u", n), s.u_prev = c.reals("load_path.u_prev", n);
-  const auto& value0 = c.reals("load_path.stage_value0");
-  std::size_t at = 0;
-  for (const std::int64_t size : c.integers("load_path.stage_value0_sizes")) {
-    if (size < 0 || std::size_t(size) > value0.size() - at)
-      throw InputError(c.source + ": the checkpoint's load_path.stage_value0_sizes do not fit load_path.stage_value0");
-    s.stage_value0.emplace_back(value0.begin() + at, value0.begin() + at + size);
-    at += std::size_t(size);
-  }
-  if (at != value0.size())
-    throw InputError(c.source + ": the checkpoint's load_path.stage_value0_sizes do not fit load_path.stage_value0");
-  const auto& points = c.reals("load_path.plastic");
-  const auto& flags = c.integers("load_path.flags");
-  if (points.size() != flags.size() * history_values)
-    throw InputError(c.source + ": the checkpoint's load_path.plastic does not hold " + std::to_string(history_values) +
-                     " values per flag");
-  s.plastic = points;
-  for (const std::int64_t flag : flags) s.flags.push_back(static_cast<std::uint8_t>(flag != 0));
-  s.history = c.reals("load_path.history");
-  return s;
 }
 
 }  // namespace perinom::cli

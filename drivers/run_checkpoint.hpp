@@ -6,17 +6,15 @@
 //     fingerprint of the particles' reference positions), solver (adr, verlet or load_path)
 //   the run's progress: snapshot_times, snapshot_files (one name a line), last_snapshot,
 //     probe_rows with probe_columns (a load path's point-probe histories)
-//   the solver's state, every field of AdrState, VerletState or LoadPathState under its
-//     name, prefixed adr., verlet. or load_path. (load_path.plastic: the model's committed
-//     history, ModelHistory::values_per_particle() reals a particle: a correspondence model's
-//     28, the committed stress, plastic strain, xi and strain or F; stage_value0 flattened
-//     with stage_value0_sizes)
+//   the solver's state (io/solver_states.hpp: every field of AdrState, VerletState or
+//     LoadPathState under its name, prefixed adr., verlet. or load_path.)
 #include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "perinom/io/checkpoint.hpp"
+#include "perinom/io/solver_states.hpp"
 #include "perinom/io/vtk_writer.hpp"
 #include "perinom/scene/problem.hpp"
 #include "perinom/solvers/adr.hpp"
@@ -43,18 +41,19 @@ std::uint64_t positions_fingerprint(const Problem& p);
 /// "adr", "verlet" or "load_path": the solver state a scene's checkpoints hold.
 std::string checkpoint_solver(const Scene& scene);
 
-io::Checkpoint checkpoint_records(const Problem& p, const RunProgress& run, const AdrState& s);
-io::Checkpoint checkpoint_records(const Problem& p, const RunProgress& run, const VerletState& s);
-io::Checkpoint checkpoint_records(const Problem& p, const RunProgress& run, const LoadPathState& s);
+/// What the checkpoint was written for and the run's progress (the records above).
+io::Checkpoint run_records(const Problem& p, const RunProgress& run);
+/// Those and the solver's state.
+template <class State>
+io::Checkpoint checkpoint_records(const Problem& p, const RunProgress& run, const State& s) {
+  io::Checkpoint c = run_records(p, run);
+  io::put_state(c, s);
+  return c;
+}
 
-/// The records back; each throws InputError naming a record that is missing or of the
-/// wrong size (vectors of the problem's dofs).
+/// The run's progress back; throws InputError naming a record that is missing or
+/// inconsistent. The solver's state: io::adr_state, io::verlet_state, io::load_path_state.
 RunProgress run_progress(const io::Checkpoint& c);
-AdrState adr_state(const io::Checkpoint& c, std::size_t dofs);
-VerletState verlet_state(const io::Checkpoint& c, std::size_t dofs);
-/// A load path's state; `history_values` is the model's ModelHistory::values_per_particle()
-/// (0 for a model without history).
-LoadPathState load_path_state(const io::Checkpoint& c, std::size_t dofs, std::size_t history_values);
 
 /// The hook that writes dir/checkpoint.bin every output.checkpoint_every iterations, steps
 /// or load steps, with the run's progress as `progress` tells it then.

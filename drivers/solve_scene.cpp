@@ -20,7 +20,7 @@ SolveReport solve(Problem& p, const std::string& dir, std::vector<double>& u, io
   if (scene.load_path()) {
     const ModelHistory* history = p.physics().history();
     const std::size_t history_values = history ? history->values_per_particle() : 0;
-    const LoadPathState state = restart ? load_path_state(restart->checkpoint(), dofs, history_values) : LoadPathState{};
+    const LoadPathState state = restart ? io::load_path_state(restart->checkpoint(), dofs, history_values) : LoadPathState{};
     return run_load_path(p, dir, u, series, probes, last_snapshot,
                          checkpoint_writer<LoadPathState>(dir, p, progress_now), restart ? &state : nullptr);
   }
@@ -38,8 +38,8 @@ SolveReport solve(Problem& p, const std::string& dir, std::vector<double>& u, io
   // The resumed state of the checkpoint's solver (Restart checked it is the scene's).
   std::optional<AdrState> adr;
   std::optional<VerletState> verlet;
-  if (restart && checkpoint_solver(scene) == "adr") adr = adr_state(restart->checkpoint(), dofs);
-  if (restart && checkpoint_solver(scene) == "verlet") verlet = verlet_state(restart->checkpoint(), dofs);
+  if (restart && checkpoint_solver(scene) == "adr") adr = io::adr_state(restart->checkpoint(), dofs);
+  if (restart && checkpoint_solver(scene) == "verlet") verlet = io::verlet_state(restart->checkpoint(), dofs);
   hooks.adr_resume = adr ? &*adr : nullptr;
   hooks.verlet_resume = verlet ? &*verlet : nullptr;
   return solve_problem(p, u, hooks);

@@ -1,7 +1,8 @@
 #pragma once
 /// @file A checkpoint file: named records of reals, whole numbers and texts, written
 /// atomically and read back bit for bit. What the records mean is the writer's business
-/// (the run command's checkpoints: drivers/run_checkpoint.hpp); this is only the format.
+/// (a solver state: io/solver_states.hpp; the run command adds its own: drivers/run_checkpoint.hpp);
+/// this is only the format.
 ///
 /// Layout, every number little-endian whatever the machine:
 ///   8 bytes   magic "PERINOMC"
