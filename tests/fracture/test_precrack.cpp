@@ -1,0 +1,97 @@
+// Precracks cut exactly the bonds that cross them: checked against a direct computation for
+// axis-aligned cracks, in 2-D and 3-D, on jittered lattices.
+#include <catch2/catch.hpp>
+
+#include <set>
+#include <stdexcept>
+
+#include "../support/clouds.hpp"
+#include "perinom/fracture/precrack.hpp"
+#include "perinom/neighbors/bond_graph.hpp"
+#include "perinom/neighbors/search.hpp"
+
+using namespace perinom;
+
+namespace {
+
+using Pair = std::pair<ParticleId, ParticleId>;
+
+/// The bonds crossing the plane x_axis = level inside the box [lo, hi] of the other axes,
+/// from the crossing point's coordinates (an independent route to the same set).
+std::set<Pair> crossing_axis_aligned(const PointCloud& c, const Families& f, int axis, double level, const double* lo,
+                                     const double* hi) {
+  std::set<Pair> out;
+  const int d = c.dim;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (Offset k = f.begin(i); k < f.end(i); ++k) {
+      const std::size_t j = f.neighbors[k];
+      const double si = c.x[i * d + axis] - level, sj = c.x[j * d + axis] - level;
+      if (!(si * sj < 0.0)) continue;
+      const double t = si / (si - sj);
+      bool inside = true;
+      for (int a = 0; a < d; ++a) {
+        if (a == axis) continue;
+        const double xa = c.x[i * d + a] + t * (c.x[j * d + a] - c.x[i * d + a]);
+        inside = inside && xa >= lo[a] && xa <= hi[a];
+      }
+      if (inside) out.insert({std::min<ParticleId>(i, j), std::max<ParticleId>(i, j)});
+    }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("a 2-D precrack segment cuts exactly the bonds that cross it", "[fracture]") {
+  const PointCloud c = test::lattice(2, 12, 0.2);
+  const Families f = radius_families(c, 3.015);
+  // A notch from the left edge to the centre, at mid-height (between particle rows).
+  Precrack notch;
+  notch.origin = {-1.0, 6.0, 0.0};
+  notch.edge1 = {7.0, 0.0, 0.0};
+  const auto cut = bonds_crossing(c, f, {notch});
+  const double lo[2] = {-1.0, 0.0}, hi[2] = {6.0, 0.0};
+  const std::set<Pair> expected = crossing_axis_aligned(c, f, 1, 6.0, lo, hi);
+  REQUIRE(!expected.empty());
+  CHECK(std::set<Pair>(cut.begin(), cut.end()) == expected);
+  CHECK(cut.size() == expected.size());  // each bond once
+  // Broken on the graph, no live bond crosses the notch any more.
+  BondGraph g(f);
+  for (const auto& [i, j] : cut) g.break_bond(i, j);
+  for (std::size_t i = 0; i < g.rows(); ++i)
+    g.for_each_live(i, [&](Offset, ParticleId j) { CHECK_FALSE(crosses(notch, 2, c.point(i), c.point(j))); });
+}
+
+TEST_CASE("a 3-D precrack rectangle cuts exactly the bonds that cross it", "[fracture]") {
+  const PointCloud c = test::lattice(3, 8, 0.2);
+  const Families f = radius_families(c, 2.015);
+  // In the plane z = 4, over x in [0, 5] and y in [1, 6]; given with a corner and two edges.
+  Precrack crack;
+  crack.origin = {5.0, 1.0, 4.0};
+  crack.edge1 = {-5.0, 0.0, 0.0};
+  crack.edge2 = {0.0, 5.0, 0.0};
+  const auto cut = bonds_crossing(c, f, {crack});
+  const double lo[3] = {0.0, 1.0, 0.0}, hi[3] = {5.0, 6.0, 0.0};
+  const std::set<Pair> expected = crossing_axis_aligned(c, f, 2, 4.0, lo, hi);
+  REQUIRE(!expected.empty());
+  CHECK(std::set<Pair>(cut.begin(), cut.end()) == expected);
+}
+
+TEST_CASE("a bond ending on the crack line is not cut, and degenerate cracks are refused", "[fracture]") {
+  Precrack seg;
+  seg.origin = {0.0, 1.0, 0.0};
+  seg.edge1 = {2.0, 0.0, 0.0};
+  const double on[2] = {1.0, 1.0}, above[2] = {1.0, 2.0}, below[2] = {1.0, 0.5}, beyond[2] = {3.0, 0.5},
+               far[2] = {3.0, 2.0};
+  CHECK_FALSE(crosses(seg, 2, on, above));
+  CHECK(crosses(seg, 2, below, above));
+  CHECK_FALSE(crosses(seg, 2, beyond, far));  // crosses the line beyond the segment's end
+  const double end_below[2] = {2.0, 0.5}, end_above[2] = {2.0, 1.5};
+  CHECK(crosses(seg, 2, end_below, end_above));  // through the end point: cut
+  Precrack zero;
+  CHECK_THROWS_AS(crosses(zero, 2, below, above), std::invalid_argument);
+  Precrack flat;
+  flat.edge1 = {1.0, 0.0, 0.0};
+  flat.edge2 = {2.0, 0.0, 0.0};
+  const double p[3] = {0.0, 0.0, -1.0}, q[3] = {0.0, 0.0, 1.0};
+  CHECK_THROWS_AS(crosses(flat, 3, p, q), std::invalid_argument);
+}
