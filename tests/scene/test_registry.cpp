@@ -139,3 +139,25 @@ TEST_CASE("the defaults the scene reader applies are the registry's and the solv
     }
   }
 }
+
+TEST_CASE("the keys a model's row lists are the keys its reader reads, and no other", "[scene][registry]") {
+  for (const ModelEntry& entry : model_registry()) {
+    // The scene without its model section, then one model section per probe.
+    std::string base = model_scenes.at(entry.name);
+    const std::size_t at = base.find("\nmodel:");
+    if (at != std::string::npos) base.erase(at + 1, base.find('\n', at + 1) - at);
+    const auto with_model = [&](const std::string& extra) {
+      return base + "model: {type: " + entry.name + extra + "}\n";
+    };
+    INFO("model.type " << entry.name);
+    REQUIRE(message_of(with_model("")).empty());
+    for (const OptionKey& key : entry.keys) {
+      // A list where every key of a model takes a scalar: read, hence refused by its name.
+      const std::string m = message_of(with_model(", " + key.key + ": [1, 2]"));
+      INFO("model." << key.key << ": " << m);
+      CHECK(m.find("model." + key.key) != std::string::npos);
+      CHECK(m.find("unknown key") == std::string::npos);
+    }
+    CHECK(message_of(with_model(", not_a_key: 1")).find("model.not_a_key: unknown key") != std::string::npos);
+  }
+}
