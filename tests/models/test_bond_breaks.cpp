@@ -9,7 +9,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "../support/broken_bonds.hpp"
+#include "../support/refresh.hpp"
 #include "../support/clouds.hpp"
 #include "perinom/geometry/surface.hpp"
 #include "perinom/models/correspondence.hpp"
@@ -19,31 +19,13 @@ using namespace perinom;
 
 namespace {
 
-LinearElastic material(int dim) {
-  LinearElastic m;
-  m.E = 30e6;
-  m.nu = 0.25;
-  m.density = 2000;
-  m.dim = dim;
-  m.plane = dim == 2 ? PlaneCondition::strain : PlaneCondition::none;
-  return m;
-}
+LinearElastic material(int dim) { return test::elastic_material(dim); }
 
-double relative(const std::vector<double>& a, const std::vector<double>& b) {
-  REQUIRE(a.size() == b.size());
-  double diff = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    REQUIRE(std::isfinite(a[k]));
-    diff = std::max(diff, std::abs(a[k] - b[k]));
-  }
-  return diff / std::max(test::max_abs(b), 1e-300);
-}
+double relative(const std::vector<double>& a, const std::vector<double>& b) { return test::relative_difference(a, b); }
 
-/// The tangent rows as (row, column) -> block, and their largest relative difference.
-using Rows = std::map<std::pair<std::size_t, ParticleId>, std::vector<double>>;
-
-Rows rows_of(const CorrespondenceModel& m) {
-  Rows rows;
+/// The tangent rows as (row, column) -> block.
+test::Rows rows_of(const CorrespondenceModel& m) {
+  test::Rows rows;
   const int d = m.dofs_per_particle();
   m.visit_tangent_rows([&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
 #pragma omp critical
@@ -53,19 +35,7 @@ Rows rows_of(const CorrespondenceModel& m) {
   return rows;
 }
 
-double rows_difference(const Rows& a, const Rows& b) {
-  double diff = 0.0, scale = 0.0;
-  for (const auto* x : {&a, &b})
-    for (const auto& [key, v] : *x) {
-      const Rows& y = x == &a ? b : a;
-      const auto it = y.find(key);
-      for (std::size_t c = 0; c < v.size(); ++c) {
-        diff = std::max(diff, std::abs(v[c] - (it == y.end() ? 0.0 : it->second[c])));
-        scale = std::max(scale, std::abs(v[c]));
-      }
-    }
-  return diff / std::max(scale, 1e-300);
-}
+using test::rows_difference;
 
 BoxGeometry box(int d, int side) {
   BoxGeometry b;

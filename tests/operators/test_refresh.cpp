@@ -12,7 +12,7 @@
 #include <random>
 #include <set>
 
-#include "../support/broken_bonds.hpp"
+#include "../support/refresh.hpp"
 #include "../support/clouds.hpp"
 #include "perinom/materials/linear_elastic.hpp"
 #include "perinom/neighbors/bond_graph.hpp"
@@ -32,36 +32,9 @@ using test::Bond;
 using test::random_bonds;
 using test::without;
 
-double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
-  REQUIRE(a.size() == b.size());
-  double diff = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    REQUIRE(std::isfinite(a[k]));
-    diff = std::max(diff, std::abs(a[k] - b[k]));
-  }
-  const double scale = std::max(test::max_abs(b), 1e-300);
-  return diff / scale;
-}
-
-/// Every block row of a visitor, as (row, column) -> values, zeros dropped.
-using Rows = std::map<std::pair<std::size_t, ParticleId>, std::vector<double>>;
-
-double rows_difference(const Rows& a, const Rows& b) {
-  double diff = 0.0, scale = 0.0;
-  auto sweep = [&](const Rows& x, const Rows& y) {
-    for (const auto& [key, v] : x) {
-      const auto it = y.find(key);
-      for (std::size_t c = 0; c < v.size(); ++c) {
-        const double w = it == y.end() ? 0.0 : it->second[c];
-        diff = std::max(diff, std::abs(v[c] - w));
-        scale = std::max(scale, std::abs(v[c]));
-      }
-    }
-  };
-  sweep(a, b);
-  sweep(b, a);
-  return diff / std::max(scale, 1e-300);
-}
+using test::relative_difference;
+using test::Rows;
+using test::rows_difference;
 
 Rows tangent_rows(const NonlocalOperator& G, const std::vector<double>& C, const std::vector<double>& volume,
                   const StabilizationTerm* S, std::vector<double>& row_sums) {
@@ -88,15 +61,7 @@ Rows scalar_rows(const ScalarCsr& A) {
   return rows;
 }
 
-LinearElastic material(int dim) {
-  LinearElastic m;
-  m.E = 30e6;
-  m.nu = 0.25;
-  m.density = 2000;
-  m.dim = dim;
-  m.plane = dim == 2 ? PlaneCondition::strain : PlaneCondition::none;
-  return m;
-}
+LinearElastic material(int dim) { return test::elastic_material(dim); }
 
 struct Case {
   int dim;
