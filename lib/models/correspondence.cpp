@@ -9,7 +9,6 @@
 #include "perinom/core/parallel.hpp"
 #include "perinom/models/elastic_points.hpp"
 #include "perinom/operators/bond_weights.hpp"
-#include "perinom/operators/second_order_stabilization.hpp"
 #include "perinom/operators/stabilization.hpp"
 #include "perinom/operators/tangent_rows.hpp"
 
@@ -92,24 +91,25 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
     throw std::invalid_argument("CorrespondenceModel: operator_order must be 1 or 2");
   const BondWeights weights = bond_weights(cloud, families, options.influence);
   graph_ = std::make_shared<BondGraph>(families);
-  if (order_ == 2) build_second_order(cloud, families, weights, options, facets);
-  else G_ = NonlocalOperator(cloud, graph_, weights,
-                             OperatorOptions{1, false, consistent ? WeightPrecision::float64 : options.weight_precision});
+  G_ = NonlocalOperator(cloud, graph_, weights,
+                        OperatorOptions{order_, false, consistent ? WeightPrecision::float64 : options.weight_precision});
   const double modulus = options.stabilization * 2.0 * material.mu();  // c_i = modulus / tr K_i
   if (options.stabilization > 0.0 && order_ == 1 && consistent) {
-    // S from the uncorrected G (zero on linear fields all the same), stored before G changes.
+    // S from the uncorrected G (zero on linear fields all the same), stored before G changes
+    // and without it: its closed-form rows would read the corrected weights.
     S_ = stored_stabilization(G_, assemble_stabilization(Stabilization(cloud, G_, modulus), particles()),
                               "stabilization S (assembled)");
-  } else if (options.stabilization > 0.0 && order_ == 1) {
+  } else if (options.stabilization > 0.0) {
+    // Order 2 with the consistent formulation: from the uncorrected G too (its scale c_i).
     const StabilizationStorage storage = options.stabilization_storage;
     const bool fused = storage == StabilizationStorage::fused ||
-                       (storage == StabilizationStorage::automatic && G_.graph().symmetric());
-    S_ = make_stabilization(cloud, G_, modulus,
+                       (storage == StabilizationStorage::automatic && order_ == 1 && G_.graph().symmetric());
+    S_ = make_stabilization(cloud, G_, weights, modulus,
                             fused                                        ? AssemblyLevel::fused
                             : storage == StabilizationStorage::matrix_free ? AssemblyLevel::matrix_free
                                                                          : AssemblyLevel::assembled);
   }
-  if (consistent && order_ == 1) make_consistent(cloud, families, weights, facets, options.weight_precision);
+  if (consistent) make_consistent(cloud, families, weights, facets, options.weight_precision);
   H_.resize(particles() * dim_ * dim_);
   Q_.resize(particles() * dim_ * dim_);
   if (formulation_ != Formulation::classical && !consistent) P_.resize(particles() * dim_ * dim_);
@@ -137,30 +137,6 @@ void CorrespondenceModel::make_consistent(const PointCloud& cloud, const Familie
   G_ = NonlocalOperator(G_.shared_graph(), dim_, std::move(g), precision);
 }
 
-void CorrespondenceModel::build_second_order(const PointCloud& cloud, const Families& families,
-                                             const BondWeights& weights, const CorrespondenceOptions& options,
-                                             BoundaryFacets& facets) {
-  const bool stabilized = options.stabilization > 0.0;
-  const bool consistent = formulation_ == Formulation::consistent;
-  const StabilizationStorage storage = options.stabilization_storage;
-  // The fused and matrix-free forms rest on the first-order identities (g = w V K^-1 xi and
-  // the closed-form rows of S0); the second-order S is stored.
-  if (stabilized && storage != StabilizationStorage::automatic && storage != StabilizationStorage::assembled)
-    throw InputError("model.stabilization_storage: with model.operator_order 2 the stabilization is the "
-                     "second-order operator energy, stored assembled (use auto or assembled)");
-  G_ = NonlocalOperator(cloud, graph_, weights,
-                        OperatorOptions{2, false, consistent ? WeightPrecision::float64 : options.weight_precision});
-  // The first-order scale: cv_i wv_ij = c_i V_i w_ij V_j with c_i = C_hg 2 mu / tr K_i.
-  std::vector<double> cv = stabilization_coefficients(G_, options.stabilization, material_.mu());
-  if (consistent) make_consistent(cloud, families, weights, facets, options.weight_precision);
-  if (!stabilized) return;
-  for (std::size_t i = 0; i < cv.size(); ++i) cv[i] *= volume_[i];
-  // The Hessian weights only enter the stabilization's z_ij (seed 002 eq. 35).
-  const NonlocalOperator fit(cloud, G_.shared_graph(), weights, OperatorOptions{2, true});
-  const SecondOrderStabilization S(cloud, fit, std::move(cv));
-  S_ = stored_stabilization(G_, assemble_second_order_stabilization(S, particles()), "second-order stabilization S");
-}
-
 BondBreaks CorrespondenceModel::break_bonds(const std::vector<std::pair<ParticleId, ParticleId>>& bonds) {
   for (const auto& [i, j] : bonds)
     if (static_cast<std::size_t>(i) >= particles() || static_cast<std::size_t>(j) >= particles())
@@ -169,8 +145,9 @@ BondBreaks CorrespondenceModel::break_bonds(const std::vector<std::pair<Particle
   if (formulation_ == Formulation::consistent)
     throw std::logic_error("break_bonds: the consistent formulation's G~ comes from a global correction and "
                            "cannot be refreshed row by row");
-  if (S_ && order_ == 2)
-    throw std::logic_error("break_bonds: the second-order stabilization is stored without its fit");
+  if (S_ && !S_->refreshable())
+    throw std::logic_error("break_bonds: " + S_->name() + " is stored without the operator it came from "
+                           "(with operator order 2, stabilization_storage matrix_free keeps it)");
   BondBreaks out;
   out.rows = graph_->rows_touched(bonds);
   for (const auto& [i, j] : bonds) out.broken += graph_->break_bond(i, j) ? 1 : 0;

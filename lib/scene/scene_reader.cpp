@@ -212,9 +212,10 @@ void read_correspondence_model(Fields& f, Scene& s) {
   // quadratic fields at the surface (first order: +40% on a cantilever 4 particles thick).
   s.model.operator_order = f.small_integer("operator_order", s.model.formulation == "consistent" ? 2 : 1);
   if (s.model.operator_order != 1 && s.model.operator_order != 2) f.fail("operator_order", "must be 1 or 2");
-  if (s.model.operator_order == 2 && s.model.stabilization > 0.0 && storage != StabilizationStorage::automatic &&
-      storage != StabilizationStorage::assembled)
-    f.fail("stabilization_storage", "with operator_order 2 the stabilization is stored assembled (use auto or assembled)");
+  if (s.model.operator_order == 2 && s.model.stabilization > 0.0 && storage == StabilizationStorage::fused)
+    f.fail("stabilization_storage", "with operator_order 2 the stabilization is the second-order operator energy, "
+                                    "assembled or matrix_free (fused rests on the first-order fit; use auto, assembled "
+                                    "or matrix_free)");
   if (s.model.formulation == "consistent" && s.model.stabilization > 0.0 && storage != StabilizationStorage::automatic &&
       storage != StabilizationStorage::assembled)
     f.fail("stabilization_storage", "the consistent formulation stores the stabilization assembled (use auto or assembled)");

@@ -260,7 +260,7 @@ TEST_CASE("a fractional operator order is named", "[cli]") {
 
 TEST_CASE("a first-order stabilization storage with operator order 2 is named", "[cli]") {
   const std::string s = with(tiny_scene, "solver:\n", "model:\n  operator_order: 2\n  stabilization_storage: fused\nsolver:\n");
-  require_rejected(s, {"model.stabilization_storage: with operator_order 2 the stabilization is stored assembled"});
+  require_rejected(s, {"model.stabilization_storage: with operator_order 2 the stabilization is the second-order operator energy"});
 }
 
 TEST_CASE("an unknown --storage for bench is bad input", "[cli]") {

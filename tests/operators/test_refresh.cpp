@@ -96,6 +96,9 @@ TEST_CASE("refreshing the rows of broken bonds equals building without them", "[
     std::vector<std::unique_ptr<StabilizationTerm>> terms;
     if (k.order == 1)
       for (const AssemblyLevel level : levels) terms.push_back(make_stabilization(cloud, G, modulus, level));
+    // Order 2: the matrix-free level keeps its fit and refreshes; the assembled one cannot.
+    std::unique_ptr<StabilizationTerm> T2;
+    if (k.order == 2) T2 = make_stabilization(cloud, G, bw, modulus, AssemblyLevel::matrix_free);
     if (k.order == 1) {
       S.emplace(cloud, G, modulus);
       F = FusedStabilization::make(cloud, G, modulus);
@@ -113,6 +116,7 @@ TEST_CASE("refreshing the rows of broken bonds equals building without them", "[
     if (S) S->refresh_rows(rows), refresh_stabilization(S0, *S, *graph, rows);
     if (F) F->refresh_rows(rows);
     for (auto& term : terms) term->refresh_rows(rows);
+    if (T2) T2->refresh_rows(rows);
     if (S2) {
       S2->refresh_rows(rows, second_order_stabilization_coefficients(cloud, G, 0.5, 1.0, area));
       refresh_second_order_stabilization(S0, *S2, *graph, rows);
@@ -212,6 +216,23 @@ TEST_CASE("refreshing the rows of broken bonds equals building without them", "[
       CHECK(relative_difference(fa, fb) <= tolerance);
       CHECK(std::abs(S2->energy(w.data(), g.data(), h.data()) - SB.energy(w.data(), g.data(), h.data())) <=
             tolerance * SB.energy(w.data(), g.data(), h.data()));
+      // The order-2 matrix-free level, refreshed, against the same built without the bonds:
+      // S u and the tangent rows; and against the assembled level (the same S).
+      const Families& fb2 = B.graph().families();
+      const auto TB2 = make_stabilization(cloud, B, bond_weights(cloud, fb2, Influence::inverse_square), modulus,
+                                          AssemblyLevel::matrix_free);
+      const auto TB2s = make_stabilization(cloud, B, bond_weights(cloud, fb2, Influence::inverse_square), modulus,
+                                           AssemblyLevel::assembled);
+      CHECK_FALSE(TB2s->refreshable());
+      std::vector<double> Hw(cloud.size() * d * d), Sa(u.size()), Sb(u.size()), Ss(u.size());
+      T2->apply(u.data(), Hw.data(), Sa.data());
+      TB2->apply(u.data(), Hw.data(), Sb.data());
+      TB2s->apply(u.data(), Hw.data(), Ss.data());
+      CHECK(relative_difference(Sa, Sb) <= tolerance);
+      CHECK(relative_difference(Ss, Sb) <= 1e-12);
+      CHECK(rows_difference(tangent_rows(G, C, cloud.volume, T2.get(), sums_a),
+                            tangent_rows(B, C, cloud.volume, TB2.get(), sums_b)) <= tolerance);
+      CHECK(relative_difference(sums_a, sums_b) <= tolerance);
       const auto Ta = stored_stabilization(G, S0, "S");
       const auto Tb = stored_stabilization(B, S0b, "S");
       CHECK_THROWS_AS(stored_stabilization(G, S0, "S")->refresh_rows(rows), std::logic_error);

@@ -62,8 +62,8 @@ struct CorrespondenceOptions {
   /// 1: G from the first-order fit (THEORY sec. 2), stabilized by S (sec. 4).
   /// 2: G from the gradient weights of the second-order fit (sec. 6; exact for quadratic
   ///    fields, boundary particles included), stabilized by the second-order operator energy
-  ///    (seed 002 eq. 35-39, second_order_stabilization.hpp) stored assembled; the fit's
-  ///    Hessian weights serve only to assemble that S and are not kept.
+  ///    (seed 002 eq. 35-39, second_order_stabilization.hpp): assembled (the fit's Hessian
+  ///    weights serve only to assemble S and are not kept) or matrix_free (the fit is kept).
   int operator_order = 1;
   /// A Drucker-Prager law in place of the linear elastic one (its E and nu must be the
   /// material's; the stabilization and the explicit solvers' mass use the elastic moduli).
@@ -139,7 +139,8 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// improved and strong formulations stays that of the intact body. Throws
   /// std::out_of_range for a particle index beyond the cloud, and std::logic_error (before
   /// changing anything) for the consistent formulation (G~ comes from a global correction)
-  /// and for the second-order stabilization (stored without its fit).
+  /// and for a stabilization stored without the operator it came from (operator order 2 at
+  /// the assembled level: stabilization_storage matrix_free keeps the fit and refreshes).
   BondBreaks break_bonds(const std::vector<std::pair<ParticleId, ParticleId>>& bonds);
 
   const NonlocalOperator& G() const { return G_; }
@@ -204,8 +205,6 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   ConsistencyReport consistency_;
   std::optional<FollowerPressure> follower_;
   std::vector<double> follower_tangent_;  // its local rows at the last prepare_tangent
-  void build_second_order(const PointCloud& cloud, const Families& families, const BondWeights& weights,
-                          const CorrespondenceOptions& options, BoundaryFacets& facets);
   /// Replaces G by G~ (consistent_gradient.hpp) after keeping the trace of the facets.
   void make_consistent(const PointCloud& cloud, const Families& families, const BondWeights& weights,
                        BoundaryFacets& facets, WeightPrecision precision);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "perinom/geometry/point_cloud.hpp"
+#include "perinom/operators/bond_weights.hpp"
 #include "perinom/operators/nonlocal_operator.hpp"
 #include "perinom/operators/row_accumulator.hpp"
 #include "perinom/operators/scalar_csr.hpp"
@@ -45,6 +46,8 @@ class StabilizationTerm {
   /// After G.refresh_rows(rows) (distinct rows, from BondGraph::rows_touched): S as built from
   /// the live bonds. Throws std::logic_error for a stored S without the operator it came from.
   virtual void refresh_rows(const std::vector<ParticleId>& rows) = 0;
+  /// False for a stored S without its source, whose refresh_rows throws.
+  virtual bool refreshable() const { return true; }
   /// For memory listings: what is stored, and its bytes (workspaces included).
   virtual std::string name() const = 0;
   virtual std::size_t memory_bytes() const = 0;
@@ -62,6 +65,16 @@ class StabilizationTerm {
 /// symmetric.
 std::unique_ptr<StabilizationTerm> make_stabilization(const PointCloud& cloud, const NonlocalOperator& G,
                                                       double modulus, AssemblyLevel level);
+
+/// The stabilization of G's fit order at the given level. Order 1 as above (weights unused).
+/// Order 2: the operator energy of the second-order fit (seed 002 eq. 35-39) on each
+/// component, from the fit with its Hessian on G's graph and `weights`, scaled by the
+/// first-order c_i = modulus / tr K_i: matrix_free keeps that fit (refreshable; its d +
+/// d(d+1)/2 weights per bond in both orders); assembled stores S and drops the fit (no
+/// refresh); fused
+/// rests on first-order identities and throws InputError naming model.stabilization_storage.
+std::unique_ptr<StabilizationTerm> make_stabilization(const PointCloud& cloud, const NonlocalOperator& G,
+                                                      const BondWeights& weights, double modulus, AssemblyLevel level);
 
 /// An S assembled elsewhere (the second-order operator energy, or S0 of an operator G was
 /// corrected from), applied to each of G's d components: the assembled level without the
