@@ -142,8 +142,10 @@ std::vector<PlanLine> CorrespondenceModel::plan() const {
 }
 
 std::vector<std::string> CorrespondenceModel::not_assembled() const {
-  std::vector<std::string> items = {order_ == 2 ? "Hessian (operator order 2 keeps the fit's gradient only)"
-                                                : "Hessian (no second-order model)"};
+  const bool fit_kept = order_ == 2 && S_ && S_->level() == AssemblyLevel::matrix_free;
+  std::vector<std::string> items = {order_ != 2 ? "Hessian (no second-order model)"
+                                    : fit_kept  ? "Hessian as a field (the matrix-free stabilization keeps the fit's)"
+                                                : "Hessian (operator order 2 keeps the fit's gradient only)"};
   if (c_hg_ <= 0.0) items.push_back("stabilization S (C_hg = 0)");
   return items;
 }
