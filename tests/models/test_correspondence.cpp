@@ -3,8 +3,10 @@
 
 #include <cstring>
 #include <memory>
+#include <set>
 
 #include "../support/clouds.hpp"
+#include "../support/refresh.hpp"
 #include "perinom/geometry/surface.hpp"
 #include "perinom/core/error.hpp"
 #include "perinom/models/correspondence.hpp"
@@ -40,12 +42,17 @@ Families families(const PointCloud& c, bool knn) {
 
 }  // namespace
 
-TEST_CASE("the assembled force equals the bond loop of seed 000 eq. 16/19", "[models]") {
-  for (const Case& k : cases) {
+TEST_CASE("the assembled force equals the bond loop of seed 000 eq. 16/19, damaged too", "[models]") {
+  for (const Case& k : cases)
+  for (const bool damaged : {false, true}) {
     const PointCloud c = test::lattice(k.dim, k.dim == 2 ? 9 : 5, 0.3);
-    const Families f = families(c, k.knn);
+    const Families intact = families(c, k.knn);
     const LinearElastic mat = material(k.dim, k.plane);
-    CorrespondenceModel model(c, f, mat, {Influence::inverse_distance, 0.0});
+    CorrespondenceModel model(c, intact, mat, {Influence::inverse_distance, 0.0});
+    // Damaged: bonds broken through the model; the loop runs over the live bonds only.
+    const std::vector<test::Bond> breaks = damaged ? test::random_bonds(intact, c.size() / 8, 31) : std::vector<test::Bond>{};
+    if (damaged) REQUIRE(model.break_bonds(breaks).detached.empty());
+    const Families f = test::without(intact, std::set<test::Bond>(breaks.begin(), breaks.end()));
     const int d = k.dim, d2 = d * d;
     const auto u = test::random_field(c.size() * d, 1e-4, 8);
     std::vector<double> fint(u.size());
@@ -85,7 +92,7 @@ TEST_CASE("the assembled force equals the bond loop of seed 000 eq. 16/19", "[mo
       }
     double err = 0.0;
     for (std::size_t k2 = 0; k2 < u.size(); ++k2) err = std::max(err, std::abs(fint[k2] + c.volume[k2 / d] * L[k2]));
-    INFO("dim " << d << (k.knn ? " knn" : " radius"));
+    INFO("dim " << d << (k.knn ? " knn" : " radius") << (damaged ? ", damaged" : ""));
     CHECK(err <= 1e-12 * test::max_abs(fint));
   }
 }
