@@ -114,11 +114,23 @@ std::vector<SolverEntry> make_solvers() {
   newton.solve = [](Problem& p, std::vector<double>& u, const SolveHooks& h) {
     return solve_newton(p.physics(), p.loading, newton_options(p.scene.solver), u, h.progress);
   };
+  // One factorization of the reduced stiffness: linear, symmetric problems (direct.hpp).
+  SolverSpec direct_defaults = d;
+  direct_defaults.tolerance = DirectOptions{}.tolerance;
+  SolverEntry direct = row("direct", {{"tolerance", text(direct_defaults.tolerance), "on the residual check"}},
+                           direct_defaults, false, true);
+  direct.jacobian = true;
+  direct.iterations_of = "direct";
+  direct.solve = [](Problem& p, std::vector<double>& u, const SolveHooks& h) {
+    DirectOptions o;
+    o.tolerance = p.scene.solver.tolerance;
+    return solve_direct(p.physics(), p.loading, u, o, h.progress);
+  };
   SolverEntry lbc = row("lbc", balance, d, true, false);
   lbc.keys.push_back({"yield_tolerance", text(d.yield_tolerance), ""});
   lbc.keys.push_back({"max_rounds", std::to_string(d.max_rounds), ""});
   lbc.keys.push_back({"check", d.check, "none | newton"});
-  return {adr, verlet, newton, lbc};
+  return {adr, verlet, newton, direct, lbc};
 }
 
 }  // namespace

@@ -248,6 +248,12 @@ void read_solver(Fields f, Scene& s) {
   if (v.type == "verlet" && s.plasticity)
     f.fail("type", "verlet is not available with a drucker_prager material (use lbc, adr or newton)");
   if (v.type == "verlet" && !s.stages.empty()) f.fail("type", "verlet does not run load stages (use lbc, adr or newton)");
+  if (v.type == "direct" && s.plasticity)
+    f.fail("type", "direct solves a linear problem in one factorization; a drucker_prager material needs lbc, adr or newton");
+  if (v.type == "direct" && !s.stages.empty()) f.fail("type", "direct does not run load stages (use lbc, adr or newton)");
+  if (v.type == "direct" && (s.model.formulation == "improved" || s.model.formulation == "strong"))
+    f.fail("type", "direct needs a symmetric stiffness (the consistent or classical formulation); the " +
+                       s.model.formulation + " formulation is not symmetric: use newton or adr");
   if (!find_model(s.model.type)->load_path_schemes && find_solver(v.type) && !find_solver(v.type)->single)
     f.fail("type", "a " + s.model.type + " is elastic: solve it by adr or newton (static) or verlet (dynamic)");
   if (!s.stages.empty() && f.has("load_steps")) f.fail("load_steps", "with stages, each stage sets its steps");

@@ -11,81 +11,12 @@
 #include <cstdio>
 
 #include "perinom/core/error.hpp"
+#include "galerkin.hpp"
 #include "inertia.hpp"
 
 namespace perinom {
-namespace {
 
-using Sparse = Eigen::SparseMatrix<double>;
-using Triplets = std::vector<Eigen::Triplet<double>>;
-
-/// -1 for a constrained dof, else its index among the free ones.
-std::vector<std::int64_t> free_index(std::size_t dofs, const Loading& loading) {
-  std::vector<std::int64_t> index(dofs, 0);
-  for (const auto dof : loading.fixed) index[dof] = -1;
-  std::int64_t next = 0;
-  for (auto& k : index) k = k < 0 ? -1 : next++;
-  return index;
-}
-
-/// K = dF/du from the model's block rows (visit may run concurrently: each particle writes
-/// only its own slot).
-Sparse assemble_stiffness(const TangentModel& model) {
-  const int d = model.dofs_per_particle();
-  std::vector<Triplets> rows(model.particles());
-  model.visit_tangent_rows([&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
-    auto& t = rows[i];
-    t.clear();
-    for (std::size_t q = 0; q < cols.size(); ++q)
-      for (int a = 0; a < d; ++a)
-        for (int b = 0; b < d; ++b)
-          t.emplace_back(static_cast<int>(i * d + a), static_cast<int>(cols[q] * d + b), blocks[(q * d + a) * d + b]);
-  });
-  Triplets all;
-  for (auto& t : rows) all.insert(all.end(), t.begin(), t.end()), Triplets().swap(t);
-  const int n = static_cast<int>(model.dofs());
-  Sparse K(n, n);
-  K.setFromTriplets(all.begin(), all.end());
-  return K;
-}
-
-/// T with u = T u_R: identity on the free dofs; zero rows for dofs fixed on their particle;
-/// (I - A_FF)^-1 A_FR for face-located constraints (A from u_F = -scale sum coef u_c).
-Sparse reduction(std::size_t dofs, const Loading& loading, const std::vector<std::int64_t>& index, int n_free) {
-  Triplets t;
-  for (std::size_t g = 0; g < dofs; ++g)
-    if (index[g] >= 0) t.emplace_back(static_cast<int>(g), static_cast<int>(index[g]), 1.0);
-  if (loading.coupled_constraints()) {
-    const int nf = static_cast<int>(loading.fixed.size());
-    std::vector<std::int64_t> constraint_of(dofs, -1);
-    for (int k = 0; k < nf; ++k) constraint_of[loading.fixed[k]] = k;
-    Triplets ff, fr;
-    for (int k = 0; k < nf; ++k) {
-      ff.emplace_back(k, k, 1.0);
-      for (Offset c = loading.couplings[k]; c < loading.couplings[k + 1]; ++c) {
-        const double a = -loading.scale[k] * loading.coef[c];
-        const std::int64_t dof = loading.coupled[c];
-        if (constraint_of[dof] >= 0) ff.emplace_back(k, static_cast<int>(constraint_of[dof]), -a);
-        else fr.emplace_back(k, static_cast<int>(index[dof]), a);
-      }
-    }
-    Sparse I_minus_AFF(nf, nf), AFR(nf, n_free);
-    I_minus_AFF.setFromTriplets(ff.begin(), ff.end());
-    AFR.setFromTriplets(fr.begin(), fr.end());
-    Eigen::SparseLU<Sparse> lu(I_minus_AFF);
-    if (lu.info() != Eigen::Success)
-      throw InputError("stability check: the face-located constraints are singular (I - A_FF has no inverse)");
-    const Eigen::MatrixXd X = lu.solve(Eigen::MatrixXd(AFR));
-    for (int k = 0; k < nf; ++k)
-      for (int r = 0; r < n_free; ++r)
-        if (X(k, r) != 0.0) t.emplace_back(static_cast<int>(loading.fixed[k]), r, X(k, r));
-  }
-  Sparse T(static_cast<int>(dofs), n_free);
-  T.setFromTriplets(t.begin(), t.end());
-  return T;
-}
-
-}  // namespace
+using detail::Sparse;
 
 std::string SpectrumReport::verdict() const {
   if (stable()) return "stable";
@@ -113,9 +44,9 @@ SpectrumReport stiffness_spectrum(TangentModel& model, const Loading& loading, c
   // 1. The Galerkin reduction K_T = T^T K T, M_T = T^T M T, and K_T's symmetry defect.
   const std::vector<double> zero(n_all, 0.0);
   model.prepare_tangent(zero.data());
-  const Sparse K = assemble_stiffness(model);
-  const auto index = free_index(n_all, loading);
-  const Sparse T = reduction(n_all, loading, index, n);
+  const Sparse K = detail::assemble_stiffness(model);
+  const auto index = detail::free_index(n_all, loading);
+  const Sparse T = detail::reduce(n_all, loading, index, n).T;
   const auto mass = model.lumped_mass();
   const Eigen::Map<const Eigen::VectorXd> m(mass.data(), static_cast<Eigen::Index>(n_all));
   const Sparse KT_sparse = Sparse(T.transpose() * K * T), MT_sparse = Sparse(T.transpose() * m.asDiagonal() * T);

@@ -84,7 +84,7 @@ TEST_CASE("every registered solver solves the pulled bar through solve_problem",
 TEST_CASE("an unknown model or solver is refused naming the key and listing the registered names",
           "[scene][registry]") {
   CHECK(model_names() == "correspondence, thin_plate");
-  CHECK(solver_names_or() == "adr, verlet, newton or lbc");
+  CHECK(solver_names_or() == "adr, verlet, newton, direct or lbc");
   const std::string model = message_of(test::pulled_bar + "model: {type: peridigm}\n");
   CHECK(model.find("model.type") != std::string::npos);
   CHECK(model.find("unknown model type (known: " + model_names() + ")") != std::string::npos);

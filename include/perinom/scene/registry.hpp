@@ -11,6 +11,7 @@
 #include "perinom/core/timer.hpp"
 #include "perinom/scene/problem.hpp"
 #include "perinom/solvers/adr.hpp"
+#include "perinom/solvers/direct.hpp"
 #include "perinom/solvers/load_path.hpp"
 #include "perinom/solvers/newton.hpp"
 #include "perinom/solvers/verlet.hpp"

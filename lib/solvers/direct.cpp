@@ -1,0 +1,103 @@
+#include "perinom/solvers/direct.hpp"
+
+#include <Eigen/CholmodSupport>
+
+#include <cmath>
+#include <cstdio>
+
+#include "galerkin.hpp"
+#include "perinom/core/error.hpp"
+#include "perinom/core/parallel.hpp"
+
+namespace perinom {
+
+using detail::Sparse;
+
+SolveReport solve_direct(TangentModel& model, const Loading& loading, std::vector<double>& u,
+                         const DirectOptions& options, Progress* progress) {
+  if (model.history())
+    throw InputError("solver.type: direct solves a linear problem; a model with history (plasticity) needs lbc, "
+                     "adr or newton");
+  if (loading.collocated)
+    throw InputError("solver.type: direct needs constraints in Galerkin form (the improved and strong formulations "
+                     "collocate theirs and are not symmetric); use newton or adr");
+  const std::size_t n_all = model.dofs();
+  const auto index = detail::free_index(n_all, loading);
+  int n = 0;
+  for (const auto k : index) n += k >= 0 ? 1 : 0;
+  SolveReport rep;
+  rep.iterations = 1;
+  u.assign(n_all, 0.0);
+
+  // K_T u_R = T^T (f - K u_p): K from the tangent rows, F(u_p) = K u_p from the model itself.
+  if (progress) progress->phase("assembling the reduced stiffness");
+  model.prepare_tangent(u.data());
+  detail::Reduction red = detail::reduce(n_all, loading, index, n, 1.0);
+  Eigen::VectorXd r(static_cast<Eigen::Index>(n_all));
+  {
+    std::vector<double> fp(n_all);
+    model.internal_force(red.prescribed.data(), fp.data());
+    for (std::size_t k = 0; k < n_all; ++k) r[static_cast<Eigen::Index>(k)] = loading.force_at(1.0, k) - fp[k];
+  }
+  const Eigen::VectorXd rhs = red.T.transpose() * r;
+  Sparse KT;
+  {
+    const Sparse K = detail::assemble_stiffness(model);
+    KT = Sparse(red.T.transpose() * K * red.T);
+  }
+  if (progress) progress->phase("factoring K_T (CHOLMOD supernodal Cholesky)");
+  Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> llt;
+  llt.cholmod().print = 0;
+  llt.compute(KT);
+  if (llt.info() != Eigen::Success) {
+    rep.failure = "the reduced stiffness K_T is not positive definite (a non-symmetric formulation, or a rigid mode "
+                  "the constraints leave free)";
+    return rep;
+  }
+  const Eigen::VectorXd uR = llt.solve(rhs);
+  const Eigen::VectorXd full = red.T * uR;
+  for (std::size_t k = 0; k < n_all; ++k) u[k] = full[static_cast<Eigen::Index>(k)] + red.prescribed[k];
+
+  // The check: the model's own force at u, reduced the same way.
+  std::vector<double> fint(n_all);
+  model.internal_force(u.data(), fint.data());
+  Eigen::VectorXd f(static_cast<Eigen::Index>(n_all)), res(static_cast<Eigen::Index>(n_all));
+  for (std::size_t k = 0; k < n_all; ++k) {
+    f[static_cast<Eigen::Index>(k)] = loading.force_at(1.0, k);
+    res[static_cast<Eigen::Index>(k)] = f[static_cast<Eigen::Index>(k)] - fint[k];
+  }
+  const double scale = std::max((red.T.transpose() * f).norm(), rhs.norm());
+  rep.residual = scale > 0.0 ? (red.T.transpose() * res).norm() / scale : (red.T.transpose() * res).norm();
+  for (const double v : u)
+    if (!std::isfinite(v)) {
+      rep.failure = "the direct solve produced a NaN or Inf";
+      rep.diverged = true;
+      return rep;
+    }
+  // One history row, with the supports' reactions as Newton reports them.
+  const int dpp = model.dofs_per_particle();
+  rep.history.columns = {"residual"};
+  for (const auto& c : loading.reaction_columns(dpp)) rep.history.columns.push_back(c);
+  rep.history.add({rep.residual});
+  if (loading.has_supports()) {
+    std::vector<double> reactions(loading.support_names.size() * dpp);
+    loading.reactions(fint.data(), 1.0, dpp, reactions.data());
+    rep.history.values.insert(rep.history.values.end(), reactions.begin(), reactions.end());
+  }
+  rep.converged = rep.residual <= options.tolerance;
+  if (!rep.converged) {
+    char msg[200];
+    std::snprintf(msg, sizeof msg, "the direct solve's residual %.3e is above solver.tolerance %.1e", rep.residual,
+                  options.tolerance);
+    rep.failure = msg;
+  }
+  if (progress) {
+    ProgressSample sample;
+    sample.iteration = 1, sample.limit = 1, sample.residual = rep.residual, sample.target = options.tolerance;
+    progress->update(sample);
+    progress->finish();
+  }
+  return rep;
+}
+
+}  // namespace perinom
