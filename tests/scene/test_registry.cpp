@@ -9,6 +9,7 @@
 #include "perinom/core/error.hpp"
 #include "perinom/scene/registry.hpp"
 #include "../support/pulled_bar.hpp"
+#include "../support/small_plate.hpp"
 
 using namespace perinom;
 
@@ -18,18 +19,7 @@ namespace {
 /// here fails the first test.
 const std::map<std::string, std::string> model_scenes = {
     {"correspondence", test::pulled_bar},
-    {"thin_plate", R"(
-name: plate
-dimension: 2
-geometry: {box: {min: [0.0, 0.0], max: [0.1, 0.1]}, thickness: 0.002}
-discretization: {dx: 0.01, horizon: {ratio: 2.015}}
-material: {type: linear_elastic, E: 2.0e11, nu: 0.3, density: 7800.0}
-model: {type: thin_plate}
-boundary:
-  - {region: left, support: simply_supported}
-  - {region: right, support: clamped}
-  - {region: all, pressure: 100.0}
-)"}};
+    {"thin_plate", test::small_plate}};
 
 std::string message_of(const std::string& text) {
   try {

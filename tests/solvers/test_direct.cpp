@@ -13,6 +13,7 @@
 #include "../support/clouds.hpp"
 #include "../support/slurp.hpp"
 #include "../support/pulled_bar.hpp"
+#include "../support/small_plate.hpp"
 #include "perinom/core/error.hpp"
 #include "perinom/scene/registry.hpp"
 
@@ -43,18 +44,6 @@ boundary:
   - {region: top, traction: [0, 2.0e6]}
 )";
 
-const std::string plate = R"(
-name: plate
-dimension: 2
-geometry: {box: {min: [0.0, 0.0], max: [0.1, 0.1]}, thickness: 0.002}
-discretization: {dx: 0.01, horizon: {ratio: 2.015}}
-material: {type: linear_elastic, E: 2.0e11, nu: 0.3, density: 7800.0}
-model: {type: thin_plate}
-boundary:
-  - {region: left, support: simply_supported}
-  - {region: right, support: clamped}
-  - {region: all, pressure: 100.0}
-)";
 
 double relative(const std::vector<double>& a, const std::vector<double>& b) {
   double diff = 0.0;
@@ -72,7 +61,7 @@ TEST_CASE("the direct solve gives Newton's answer on linear problems", "[solvers
       {"pulled bar, plain constraints", test::pulled_bar},
       {"block, face constraints, consistent order 2", block},
       {"block, classical order 1", block + "model: {formulation: classical}\n"},
-      {"thin plate", plate},
+      {"thin plate", test::small_plate},
   };
   for (const Case& c : cases) {
     INFO(c.name);
