@@ -52,6 +52,7 @@ SolveReport solve_direct(TangentModel& model, const Loading& loading, std::vecto
   if (llt.info() != Eigen::Success) {
     rep.failure = "the reduced stiffness K_T is not positive definite (a non-symmetric formulation, or a rigid mode "
                   "the constraints leave free)";
+    if (progress) progress->finish();
     return rep;
   }
   const Eigen::VectorXd uR = llt.solve(rhs);
@@ -72,6 +73,7 @@ SolveReport solve_direct(TangentModel& model, const Loading& loading, std::vecto
     if (!std::isfinite(v)) {
       rep.failure = "the direct solve produced a NaN or Inf";
       rep.diverged = true;
+      if (progress) progress->finish();
       return rep;
     }
   // One history row, with the supports' reactions as Newton reports them.
