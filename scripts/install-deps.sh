@@ -3,7 +3,7 @@
 set -euo pipefail
 # libopenblas0-pthread: an optimized BLAS behind libblas.so.3 for CHOLMOD's supernodal
 # Cholesky (solver.type direct, the stability check); the reference BLAS gives the same
-# answers, 2.4 times slower on the 3-D cantilever at 8 particles through the thickness.
+# answers, 2.3 times slower on the 3-D cantilever at 8 particles through the thickness.
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq
 apt-get install -y -qq --no-install-recommends \
