@@ -27,6 +27,10 @@ SolveReport solve_direct(TangentModel& model, const Loading& loading, std::vecto
   for (const auto k : index) n += k >= 0 ? 1 : 0;
   SolveReport rep;
   rep.iterations = 1;
+  // The history's columns before anything can fail (a failed solve still writes its header).
+  const int dpp = model.dofs_per_particle();
+  rep.history.columns = {"residual"};
+  for (const auto& c : loading.reaction_columns(dpp)) rep.history.columns.push_back(c);
   u.assign(n_all, 0.0);
 
   // K_T u_R = T^T (f - K u_p): K from the tangent rows, F(u_p) = K u_p from the model itself.
@@ -77,9 +81,6 @@ SolveReport solve_direct(TangentModel& model, const Loading& loading, std::vecto
       return rep;
     }
   // One history row, with the supports' reactions as Newton reports them.
-  const int dpp = model.dofs_per_particle();
-  rep.history.columns = {"residual"};
-  for (const auto& c : loading.reaction_columns(dpp)) rep.history.columns.push_back(c);
   rep.history.add({rep.residual});
   if (loading.has_supports()) {
     std::vector<double> reactions(loading.support_names.size() * dpp);

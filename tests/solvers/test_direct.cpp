@@ -108,3 +108,14 @@ TEST_CASE("perinom run with solver.type direct writes a converged summary and it
   const std::string history = test_support::slurp(dir.path / "out" / "history.csv");
   CHECK(history.rfind("residual,boundary.0.Rx", 0) == 0);
 }
+
+TEST_CASE("a direct solve with a rigid mode left free stops with exit 3, naming the cause", "[solvers][direct][cli]") {
+  // The pulled bar without its one y support: K_T is singular.
+  const std::string free_bar = cli_test::with(test::pulled_bar, "  - {region: {box: {min: [0, 0], max: [0.002, 0.002]}}, fix: [y]}\n", "");
+  cli_test::ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << free_bar + "solver: {type: direct}\n";
+  const cli_test::Outcome o = cli_test::perinom(dir, "run scene.yaml --out out");
+  CHECK(o.exit_code == 3);
+  CHECK(o.err.find("not positive definite") != std::string::npos);
+  CHECK(test_support::slurp(dir.path / "out" / "summary.json").find("\"status\": \"not_converged\"") != std::string::npos);
+}
