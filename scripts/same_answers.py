@@ -27,6 +27,7 @@ import time
 # solver path.
 CASES = [
     ("examples/biaxial_compression.yaml", []),
+    ("examples/biaxial_compression.yaml", ["model.kinematics=finite_rotation"]),
     ("examples/lame_cylinder.yaml", []),
     ("examples/plate_with_hole.yaml", []),
     ("examples/thin_plate_clamped.yaml", []),

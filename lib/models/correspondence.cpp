@@ -77,7 +77,11 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
   if (!law_ && options.plasticity) {
     if (material.plane == PlaneCondition::stress)
       throw InputError("material.plane: Drucker-Prager plasticity needs plane strain in 2-D");
-    law_ = std::make_unique<PlasticPoints>(*options.plasticity, dim_, volume_.size(), options.kinematics);
+    auto points = std::make_unique<PlasticPoints>(*options.plasticity, dim_, volume_.size());
+    if (options.kinematics == Kinematics::finite_rotation)
+      law_ = std::make_unique<FiniteRotationLaw>(std::move(points), dim_);
+    else
+      law_ = std::move(points);
   }
   if (!law_) law_ = std::make_unique<ElasticPoints>(material, volume_.size());
   C_.resize(static_cast<std::size_t>(dim_) * dim_ * dim_ * dim_);
@@ -248,6 +252,16 @@ void CorrespondenceModel::prepare_tangent(const double* u) {
   G_.apply(u, dim_, H_.data());
   if (follower_ && follower_->active()) follower_->tangent(H_.data(), follower_tangent_);
   C_stride_ = law_->tangents(H_.data(), C_);
+}
+
+const PlasticPoints* CorrespondenceModel::plastic() const {
+  if (const auto* wrapper = dynamic_cast<const FiniteRotationLaw*>(law_.get()))
+    return dynamic_cast<const PlasticPoints*>(&wrapper->inner());
+  return dynamic_cast<const PlasticPoints*>(law_.get());
+}
+
+PlasticPoints* CorrespondenceModel::plastic() {
+  return const_cast<PlasticPoints*>(static_cast<const CorrespondenceModel&>(*this).plastic());
 }
 
 void CorrespondenceModel::commit(const double* u) {

@@ -1,7 +1,7 @@
-// The consistent tangent dP/dH of PlasticPoints under finite rotation, in closed form: the
-// chain rule through every step of the update (PlasticPoints::increment, the law's return
-// map, the rotation to Cauchy stress and P = J sigma F^-T), one direction dH per column.
-#include "perinom/models/plastic_points.hpp"
+// The consistent tangent dP/dH of FiniteRotationLaw, in closed form: the chain rule through
+// every step of the update (the midpoint increment, the wrapped law's return map, the
+// rotation to Cauchy stress and P = J sigma F^-T), one direction dH per column.
+#include "perinom/models/finite_rotation.hpp"
 
 #include "polar.hpp"
 
@@ -9,22 +9,20 @@ namespace perinom {
 
 using detail::Mat3;
 
-void PlasticPoints::tangent_finite_rotation(std::size_t i, const double* H, double* C) const {
-  const Point& n = committed_[i];
+void FiniteRotationLaw::tangent(std::size_t i, const double* H, double* C) const {
   const int d = dim_;
   Mat3 F = Mat3::Identity();
   for (int a = 0; a < d; ++a)
     for (int b = 0; b < d; ++b) F(a, b) += H[a * d + b];
-  const Mat3 Fn = Eigen::Map<const Mat3>(n.eps);
+  const Mat3 Fn = Eigen::Map<const Mat3>(committed_F_.data() + i * 9);
   const Mat3 Fm = 0.5 * (F + Fn), Fm_inv = Fm.inverse();
   const Mat3 L = (F - Fn) * Fm_inv, S = 0.5 * (L + L.transpose());
   const Mat3 Rm = detail::rotation(Fm), Um = Rm.transpose() * Fm;
   const Mat3 deps = Rm.transpose() * S * Rm;
   // The law: the unrotated stress and its tangent D = d sigma_u / d deps.
-  double D[81];
-  DruckerPrager::State law;
-  law_.tangent(n.law, deps.data(), law, D);
-  const Mat3 sigma_u = Eigen::Map<const Mat3>(law.sigma);
+  double D[81], sigma_u_data[9];
+  law_->tangent(i, deps.data(), sigma_u_data, D);
+  const Mat3 sigma_u = Eigen::Map<const Mat3>(sigma_u_data);
   const Mat3 R = detail::rotation(F), U = R.transpose() * F;
   const Mat3 F_inv = F.inverse(), F_invT = F_inv.transpose();
   const double J = F.determinant();

@@ -4,59 +4,18 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "polar.hpp"
-
 namespace perinom {
 
-PlasticPoints::PlasticPoints(const DruckerPrager& law, int dim, std::size_t particles, Kinematics kinematics)
-    : law_(law), dim_(dim), kinematics_(kinematics), committed_(particles), trial_(particles), flagged_(particles, 0) {
-  if (kinematics_ == Kinematics::finite_rotation)
-    for (auto* points : {&committed_, &trial_})
-      for (auto& p : *points) p.eps[0] = p.eps[4] = p.eps[8] = 1.0;  // F = I
-}
-
-using detail::Mat3;
-using detail::rotation;
+PlasticPoints::PlasticPoints(const DruckerPrager& law, int dim, std::size_t particles)
+    : law_(law), dim_(dim), committed_(particles), trial_(particles), flagged_(particles, 0) {}
 
 void PlasticPoints::increment(const Point& n, const double* H, Point& out, double* deps) const {
   strain(H, out.eps);
-  if (kinematics_ == Kinematics::small_strain) {
-    for (int k = 0; k < 9; ++k) deps[k] = out.eps[k] - n.eps[k];
-    return;
-  }
-  // F = I + grad u (plane strain: F_zz = 1, no out-of-plane shear).
-  const int d = dim_;
-  Mat3 F = Mat3::Identity();
-  for (int a = 0; a < d; ++a)
-    for (int b = 0; b < d; ++b) F(a, b) += H[a * d + b];
-  const Mat3 Fn = Eigen::Map<const Mat3>(n.eps);
-  const Mat3 Fm = 0.5 * (F + Fn);
-  const Mat3 L = (F - Fn) * Fm.inverse();
-  const Mat3 Rm = rotation(Fm);
-  const Mat3 D = Rm.transpose() * (0.5 * (L + L.transpose())) * Rm;
-  Eigen::Map<Mat3>{out.eps} = F;
-  Eigen::Map<Mat3>{deps} = D;
+  for (int k = 0; k < 9; ++k) deps[k] = out.eps[k] - n.eps[k];
 }
 
 void PlasticPoints::cauchy(const Point& point, double* sigma) const {
-  if (kinematics_ == Kinematics::small_strain) {
-    std::copy(point.law.sigma, point.law.sigma + 9, sigma);
-    return;
-  }
-  const Mat3 R = rotation(Eigen::Map<const Mat3>(point.eps));
-  Eigen::Map<Mat3>{sigma} = R * Eigen::Map<const Mat3>(point.law.sigma) * R.transpose();
-}
-
-void PlasticPoints::first_piola(const Point& point, double* P) const {
-  if (kinematics_ == Kinematics::small_strain) {
-    in_plane(point.law.sigma, P);
-    return;
-  }
-  const Mat3 F = Eigen::Map<const Mat3>(point.eps);
-  Mat3 sigma;
-  cauchy(point, sigma.data());
-  const Mat3 P3 = F.determinant() * sigma * F.inverse().transpose();
-  in_plane(P3.data(), P);
+  std::copy(point.law.sigma, point.law.sigma + 9, sigma);
 }
 
 void PlasticPoints::strain(const double* H, double* eps) const {
@@ -79,26 +38,27 @@ PlasticPoints::Point PlasticPoints::evaluate(std::size_t i, const double* H) con
   return out;
 }
 
+void PlasticPoints::advance(std::size_t i, const double* deps, Point& t) const {
+  if (mode_ == PlasticMode::lbc && !flagged_[i])
+    law_.elastic(committed_[i].law, deps, t.law);
+  else
+    law_.update(committed_[i].law, deps, t.law);
+}
+
 void PlasticPoints::stress(std::size_t i, const double* H, double* P) {
   Point& t = trial_[i];
-  if (mode_ == PlasticMode::lbc && !flagged_[i]) {
-    double deps[9];
-    increment(committed_[i], H, t, deps);
-    law_.elastic(committed_[i].law, deps, t.law);
-  } else {
-    t = evaluate(i, H);
-  }
-  first_piola(t, P);
+  double deps[9];
+  increment(committed_[i], H, t, deps);
+  advance(i, deps, t);
+  in_plane(t.law.sigma, P);
 }
 
 void PlasticPoints::tangent(std::size_t i, const double* H, double* C) const {
-  if (kinematics_ == Kinematics::finite_rotation) return tangent_finite_rotation(i, H, C);
   const Point& n = committed_[i];
-  double eps[9], deps[9], D[81];
+  double eps[9], deps[9], sigma[9], D[81];
   strain(H, eps);
   for (int k = 0; k < 9; ++k) deps[k] = eps[k] - n.eps[k];
-  DruckerPrager::State out;
-  law_.tangent(n.law, deps, out, D);
+  tangent(i, deps, sigma, D);
   // eps = sym(H): dP_ab/dH_ce = (D_abce + D_abec) / 2, in-plane components only.
   const int d = dim_;
   for (int a = 0; a < d; ++a)
@@ -107,6 +67,25 @@ void PlasticPoints::tangent(std::size_t i, const double* H, double* C) const {
         for (int e = 0; e < d; ++e)
           C[((a * d + b) * d + c) * d + e] =
               0.5 * (D[((a * 3 + b) * 3 + c) * 3 + e] + D[((a * 3 + b) * 3 + e) * 3 + c]);
+}
+
+void PlasticPoints::update(std::size_t i, const double* deps, double* sigma) {
+  Point& t = trial_[i];
+  for (int k = 0; k < 9; ++k) t.eps[k] = committed_[i].eps[k] + deps[k];
+  advance(i, deps, t);
+  std::copy(t.law.sigma, t.law.sigma + 9, sigma);
+}
+
+void PlasticPoints::evaluate(std::size_t i, const double* deps, double* sigma) const {
+  DruckerPrager::State out;
+  law_.update(committed_[i].law, deps, out);
+  std::copy(out.sigma, out.sigma + 9, sigma);
+}
+
+void PlasticPoints::tangent(std::size_t i, const double* deps, double* sigma, double* D) const {
+  DruckerPrager::State out;
+  law_.tangent(committed_[i].law, deps, out, D);
+  std::copy(out.sigma, out.sigma + 9, sigma);
 }
 
 double PlasticPoints::stored_energy(std::size_t i) const {
@@ -166,19 +145,28 @@ std::size_t PlasticPoints::tangents(const double* H, std::vector<double>& C) con
 void PlasticPoints::cauchy(const double* H, double* sigma) const {
   const std::size_t d2 = static_cast<std::size_t>(dim_) * dim_;
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < size(); ++i) cauchy(evaluate(i, H + i * d2), sigma + i * 9);
+  for (std::size_t i = 0; i < size(); ++i) cauchy(i, H + i * d2, sigma + i * 9);
 }
 
 std::vector<LawField> PlasticPoints::fields() const {
-  return {{"stress", 9}, {"eq_plastic_strain", 1}, {"plastic_strain", 9}, {"yielded", 1}, {"lbc_flagged", 1}};
+  std::vector<LawField> out{{"stress", 9}};
+  for (auto& f : state_fields()) out.push_back(std::move(f));
+  return out;
 }
 
 void PlasticPoints::field(const std::string& name, const double* H, std::vector<double>& values) const {
+  if (name != "stress") return state_field(name, values);
+  values.resize(size() * 9);
+  cauchy(H, values.data());
+}
+
+std::vector<LawField> PlasticPoints::state_fields() const {
+  return {{"eq_plastic_strain", 1}, {"plastic_strain", 9}, {"yielded", 1}, {"lbc_flagged", 1}};
+}
+
+void PlasticPoints::state_field(const std::string& name, std::vector<double>& values) const {
   const std::size_t n = size();
-  if (name == "stress") {
-    values.resize(n * 9);
-    cauchy(H, values.data());
-  } else if (name == "eq_plastic_strain" || name == "yielded") {
+  if (name == "eq_plastic_strain" || name == "yielded") {
     values.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       const double xi = committed_[i].law.xi;
@@ -196,8 +184,7 @@ void PlasticPoints::field(const std::string& name, const double* H, std::vector<
 }
 
 void PlasticPoints::reset() {
-  Point virgin;
-  if (kinematics_ == Kinematics::finite_rotation) virgin.eps[0] = virgin.eps[4] = virgin.eps[8] = 1.0;
+  const Point virgin;
   std::fill(committed_.begin(), committed_.end(), virgin);
   std::fill(trial_.begin(), trial_.end(), virgin);
   std::fill(flagged_.begin(), flagged_.end(), std::uint8_t{0});

@@ -29,7 +29,6 @@ ProbeReadout::ProbeReadout(const Problem& p, const std::vector<double>& u)
             u,
             values_of(fields_, "stress") ? *values_of(fields_, "stress") : none_,
             values_of(fields_, "displacement_gradient") ? *values_of(fields_, "displacement_gradient") : none_,
-            nullptr,
             values_of(fields_, "stress_gradient"),
             values_of(fields_, "eq_plastic_strain"),
             &fields_} {}

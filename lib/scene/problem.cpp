@@ -273,7 +273,7 @@ double probe_value(const ProbeSpec& spec, std::size_t i, const ProbeFields& f) {
   if (stress_field(spec.field)) return stress_probe_value(spec, f.sigma.data() + i * 9);
   if (spec.field == "equivalent_strain") return equivalent_strain(f.H.data() + i * d * d, d);
   if (spec.field == "eq_plastic_strain")
-    return f.plastic ? f.plastic->committed()[i].law.xi : f.eq_plastic_strain ? (*f.eq_plastic_strain)[i] : 0.0;
+    return f.eq_plastic_strain ? (*f.eq_plastic_strain)[i] : 0.0;
   if (f.fields)
     for (const auto& field : *f.fields)
       if (field.name == spec.field) return field.values[i * field.components];

@@ -9,6 +9,7 @@
 #include "perinom/materials/material_point.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/models/elastic_points.hpp"
+#include "perinom/models/finite_rotation.hpp"
 #include "perinom/models/plastic_points.hpp"
 #include "perinom/neighbors/search.hpp"
 
@@ -105,38 +106,73 @@ TEST_CASE("elastic points answer with LinearElastic's stress, energy, tangent an
   }
 }
 
+namespace {
+
+// Particles yield at this H: batch stresses, tangents, Cauchy stresses, energies and commit
+// through the interface against the per-particle calls of a twin law (PlasticPoints or
+// FiniteRotationLaw); `points` are the Drucker-Prager points inside each.
+template <class Law>
+void check_per_particle(int dim, Law& direct, PointwiseLaw& law, PlasticPoints& direct_points,
+                        PlasticPoints& through_points) {
+  const std::size_t n = law.size();
+  const int d2 = dim * dim, d4 = d2 * d2;
+  REQUIRE(law.has_history());
+  const auto H = gradients(dim, n, 2e-3);
+  const auto P = stresses(law, H);
+  std::vector<double> psi(n), sigma(n * 9), C;
+  REQUIRE(law.tangents(H.data(), C) == std::size_t(d4));
+  law.cauchy(H.data(), sigma.data());
+  for (std::size_t i = 0; i < n; ++i) {
+    double Pd[9], Cd[81], sd[9];
+    direct.stress(i, H.data() + i * d2, Pd);
+    direct.tangent(i, H.data() + i * d2, Cd);
+    direct.cauchy(i, H.data() + i * d2, sd);
+    for (int k = 0; k < d2; ++k) CHECK(P[i * d2 + k] == Pd[k]);
+    for (int k = 0; k < d4; ++k) CHECK(C[i * d4 + k] == Cd[k]);
+    for (int k = 0; k < 9; ++k) CHECK(sigma[i * 9 + k] == sd[k]);
+  }
+  law.energies(H.data(), psi.data());
+  for (std::size_t i = 0; i < n; ++i) CHECK(psi[i] == direct_points.stored_energy(i));
+  law.commit(), direct_points.commit();
+  for (std::size_t i = 0; i < n; ++i) {
+    CHECK(through_points.committed()[i].law.xi == direct_points.committed()[i].law.xi);
+    CHECK(through_points.committed()[i].law.xi > 0.0);
+  }
+}
+
+// Drucker-Prager points in return-map mode, alone or inside a finite-rotation wrapper.
+std::unique_ptr<PointwiseLaw> drucker_prager_law(Kinematics kin, int dim, std::size_t n) {
+  auto points = std::make_unique<PlasticPoints>(drucker_prager(), dim, n);
+  points->set_mode(PlasticMode::return_map);
+  if (kin == Kinematics::small_strain) return points;
+  return std::make_unique<FiniteRotationLaw>(std::move(points), dim);
+}
+
+PlasticPoints& points_of(PointwiseLaw& law) {
+  if (auto* wrapper = dynamic_cast<FiniteRotationLaw*>(&law)) return dynamic_cast<PlasticPoints&>(wrapper->inner());
+  return dynamic_cast<PlasticPoints&>(law);
+}
+
+}  // namespace
+
 TEST_CASE("Drucker-Prager points through the law interface equal their per-particle calls", "[models]") {
-  for (const Kinematics kin : {Kinematics::small_strain, Kinematics::finite_rotation})
-    for (const int dim : {2, 3}) {
-      const std::size_t n = 6;
-      const int d2 = dim * dim, d4 = d2 * d2;
-      PlasticPoints direct(drucker_prager(), dim, n, kin), through(drucker_prager(), dim, n, kin);
-      direct.set_mode(PlasticMode::return_map), through.set_mode(PlasticMode::return_map);
-      PointwiseLaw& law = through;
-      REQUIRE(law.has_history());
-      const auto H = gradients(dim, n, 2e-3);
-      const auto P = stresses(law, H);
-      std::vector<double> psi(n), sigma(n * 9), C;
-      REQUIRE(law.tangents(H.data(), C) == std::size_t(d4));
-      law.cauchy(H.data(), sigma.data());
-      for (std::size_t i = 0; i < n; ++i) {
-        double Pd[9], Cd[81], sd[9];
-        direct.stress(i, H.data() + i * d2, Pd);
-        direct.tangent(i, H.data() + i * d2, Cd);
-        direct.cauchy(direct.evaluate(i, H.data() + i * d2), sd);
-        for (int k = 0; k < d2; ++k) CHECK(P[i * d2 + k] == Pd[k]);
-        for (int k = 0; k < d4; ++k) CHECK(C[i * d4 + k] == Cd[k]);
-        for (int k = 0; k < 9; ++k) CHECK(sigma[i * 9 + k] == sd[k]);
-      }
-      law.energies(H.data(), psi.data());
-      for (std::size_t i = 0; i < n; ++i) CHECK(psi[i] == direct.stored_energy(i));
-      // The particles yield at this H: the interface's commit is the points' commit.
-      law.commit(), direct.commit();
-      for (std::size_t i = 0; i < n; ++i) {
-        CHECK(through.committed()[i].law.xi == direct.committed()[i].law.xi);
-        CHECK(through.committed()[i].law.xi > 0.0);
-      }
-    }
+  for (const int dim : {2, 3}) {
+    const std::size_t n = 6;
+    INFO("dim " << dim);
+    auto direct = drucker_prager_law(Kinematics::small_strain, dim, n);
+    auto through = drucker_prager_law(Kinematics::small_strain, dim, n);
+    check_per_particle(dim, points_of(*direct), *through, points_of(*direct), points_of(*through));
+  }
+}
+
+TEST_CASE("the finite-rotation wrapper through the law interface equals its per-particle calls", "[models]") {
+  for (const int dim : {2, 3}) {
+    const std::size_t n = 6;
+    INFO("dim " << dim);
+    auto direct = drucker_prager_law(Kinematics::finite_rotation, dim, n);
+    auto through = drucker_prager_law(Kinematics::finite_rotation, dim, n);
+    check_per_particle(dim, dynamic_cast<FiniteRotationLaw&>(*direct), *through, points_of(*direct), points_of(*through));
+  }
 }
 
 TEST_CASE("the law's tangent is the finite difference of its stresses, elastic and plastic", "[models]") {
@@ -144,16 +180,42 @@ TEST_CASE("the law's tangent is the finite difference of its stresses, elastic a
   for (const Kinematics kin : {Kinematics::small_strain, Kinematics::finite_rotation})
     for (const int dim : {2, 3}) {
       const std::size_t n = 4;
-      PlasticPoints points(drucker_prager(), dim, n, kin);
-      points.set_mode(PlasticMode::return_map);
-      PointwiseLaw& law = points;
+      auto law = drucker_prager_law(kin, dim, n);
       const auto H1 = gradients(dim, n, 1.5e-3), H2 = gradients(dim, n, 2.5e-3);
-      stresses(law, H1);
-      law.commit();
-      REQUIRE(points.committed()[0].law.xi > 0.0);
+      stresses(*law, H1);
+      law->commit();
+      REQUIRE(points_of(*law).committed()[0].law.xi > 0.0);
       INFO("dim " << dim << (kin == Kinematics::finite_rotation ? " finite rotation" : " small strain"));
-      CHECK(tangent_defect(law, H2, 1e-9) < 1e-5);
+      CHECK(tangent_defect(*law, H2, 1e-9) < 1e-5);
     }
+}
+
+TEST_CASE("the finite-rotation wrapper's checkpoint restores its states, F included", "[models]") {
+  // Yield, commit, save; then move on and commit again; restore: the stresses at a new H are
+  // those of the saved state (bitwise), and a history of the wrapped law's size is refused.
+  const int dim = 2;
+  const std::size_t n = 5;
+  auto law = drucker_prager_law(Kinematics::finite_rotation, dim, n);
+  LawHistory& history = *law->history();
+  REQUIRE(history.values_per_particle() == points_of(*law).values_per_particle() + 9);
+  stresses(*law, gradients(dim, n, 2e-3));
+  law->commit();
+  const HistoryState saved = history.save_history();
+  const auto H = gradients(dim, n, 3e-3);
+  const auto expected = stresses(*law, H);
+  stresses(*law, gradients(dim, n, -1e-3));
+  law->commit();
+  REQUIRE(stresses(*law, H) != expected);
+  history.restore_history(saved);
+  CHECK(stresses(*law, H) == expected);
+  CHECK(history.save_history().values == saved.values);
+  // F is in the checkpoint: the saved values hold F = I + H at the first state, not I.
+  CHECK(saved.values[points_of(*law).values_per_particle()] != 1.0);
+  CHECK_THROWS_AS(history.restore_history(points_of(*law).save_history()), std::invalid_argument);
+  history.reset_history();
+  std::vector<double> xi;
+  law->field("eq_plastic_strain", H.data(), xi);
+  CHECK(*std::max_element(xi.begin(), xi.end()) == 0.0);
 }
 
 TEST_CASE("a law with history changes its committed states only at commit", "[models]") {

@@ -26,6 +26,7 @@
 #include "perinom/models/follower_pressure.hpp"
 #include "perinom/models/model_history.hpp"
 #include "perinom/models/tangent_model.hpp"
+#include "perinom/models/finite_rotation.hpp"
 #include "perinom/models/plastic_points.hpp"
 #include "perinom/models/pointwise_law.hpp"
 #include "perinom/neighbors/families.hpp"
@@ -69,7 +70,8 @@ struct CorrespondenceOptions {
   /// material's; the stabilization and the explicit solvers' mass use the elastic moduli).
   /// Any other law is given to the constructor (PointwiseLaw).
   std::optional<DruckerPrager> plasticity;
-  Kinematics kinematics = Kinematics::small_strain;  ///< of the plastic law (PlasticPoints)
+  /// finite_rotation: the plastic law inside a FiniteRotationLaw.
+  Kinematics kinematics = Kinematics::small_strain;
   /// Pressures follow the deformed surface (follower_pressure.hpp); finite_rotation only.
   bool follower_pressure = false;
 };
@@ -121,10 +123,10 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// The pointwise law between G and G^T, and the history it keeps.
   PointwiseLaw& law() { return *law_; }
   const PointwiseLaw& law() const { return *law_; }
-  /// The law as Drucker-Prager points, or nullptr (for tests and diagnostics: the load path
-  /// goes through history()).
-  PlasticPoints* plastic() { return dynamic_cast<PlasticPoints*>(law_.get()); }
-  const PlasticPoints* plastic() const { return dynamic_cast<const PlasticPoints*>(law_.get()); }
+  /// The Drucker-Prager points, the law itself or the one a FiniteRotationLaw wraps, or
+  /// nullptr (for tests and diagnostics: the load path goes through history()).
+  PlasticPoints* plastic();
+  const PlasticPoints* plastic() const;
   /// A law with history: evaluates every particle at u and commits (nothing otherwise).
   void commit(const double* u) override;
   /// The law's tangents at u (PointwiseLaw::tangents), used by visit_tangent_rows until the

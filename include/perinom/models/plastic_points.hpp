@@ -4,7 +4,9 @@
 ///
 /// The model hands this class grad u at a particle; it turns it into the small strain
 /// (plane strain in 2-D: eps_zz = 0, sigma_zz kept), evaluates the law from the committed
-/// state, and keeps the result as the particle's trial state. Plastic variables change only
+/// state, and keeps the result as the particle's trial state. Under finite rotation a
+/// FiniteRotationLaw wraps the points and drives them by strain increments instead
+/// (IncrementalLaw); they then know nothing of grad u. Plastic variables change only
 /// at commit(): how a solve evaluates is the mode:
 ///   lbc:        unflagged particles answer with the elastic trial from their committed
 ///               state, flagged ones with the return map (the balance of THEORY sec. 8);
@@ -18,6 +20,7 @@
 #include <vector>
 
 #include "perinom/materials/drucker_prager.hpp"
+#include "perinom/models/incremental_law.hpp"
 #include "perinom/models/model_history.hpp"
 #include "perinom/models/pointwise_law.hpp"
 
@@ -25,28 +28,17 @@ namespace perinom {
 
 enum class PlasticMode { lbc, return_map };
 
-/// small_strain: eps = sym(grad u), the stress is the law's.
-/// finite_rotation (seed 000 sec. 2.1, THEORY sec. 3): F = I + grad u; over a step the
-///   unrotated strain increment is R_m^T sym(L) R_m with L = (F - F_n) F_m^-1 and R_m the
-///   rotation of the midpoint F_m = (F + F_n)/2 (zero for any rigid rotation, since then L is
-///   the Cayley transform of the rotation, which is skew); the law works on the unrotated
-///   stress; the Cauchy stress is R sigma_u R^T with R from the polar decomposition of F, and
-///   the model receives P = J sigma F^-T. Its tangent for Newton is the closed-form chain
-///   rule through all of these (the polar rotations' derivatives included).
-enum class Kinematics { small_strain, finite_rotation };
-
-class PlasticPoints final : public PointwiseLaw, public LawHistory {
+class PlasticPoints final : public PointwiseLaw, public IncrementalLaw, public LawHistory {
  public:
   /// One particle's state: the law's state and the total strain it belongs to.
   struct Point {
-    DruckerPrager::State law;  ///< finite rotation: the unrotated stress and plastic strain
-    double eps[9] = {};  ///< small strain: total strain, tension positive; finite rotation: F
+    DruckerPrager::State law;  ///< under finite rotation: the unrotated stress and plastic strain
+    /// The total strain, tension positive (driven by increments: their sum).
+    double eps[9] = {};
   };
 
   PlasticPoints() = default;
-  PlasticPoints(const DruckerPrager& law, int dim, std::size_t particles,
-                Kinematics kinematics = Kinematics::small_strain);
-  Kinematics kinematics() const { return kinematics_; }
+  PlasticPoints(const DruckerPrager& law, int dim, std::size_t particles);
 
   const DruckerPrager& law() const { return law_; }
   std::size_t size() const override { return committed_.size(); }
@@ -70,14 +62,23 @@ class PlasticPoints final : public PointwiseLaw, public LawHistory {
   void stress(std::size_t i, const double* H, double* P);
   /// The state particle i would take at H under the return map, without keeping it.
   Point evaluate(std::size_t i, const double* H) const;
-  /// The 3 x 3 Cauchy stress of a state (the law's stress, rotated under finite rotation).
+  /// The 3 x 3 Cauchy stress of a state, and of the return map at H (nothing kept).
   void cauchy(const Point& point, double* sigma) const;
+  void cauchy(std::size_t i, const double* H, double* sigma) const { cauchy(evaluate(i, H), sigma); }
   /// The consistent tangent dP/dH (d^4 values) of the return map at H, from the committed
-  /// state (the elastic C for an elastic step, as in Newton on a load step), finite
-  /// rotation included.
+  /// state (the elastic C for an elastic step, as in Newton on a load step).
   void tangent(std::size_t i, const double* H, double* C) const;
   /// psi = 1/2 sigma : (eps - eps_p) of the kept trial state (J/m^3).
-  double stored_energy(std::size_t i) const;
+  double stored_energy(std::size_t i) const override;
+
+  // IncrementalLaw: the same states driven by 3 x 3 strain increments (by the mode).
+  void update(std::size_t i, const double* deps, double* sigma) override;
+  void evaluate(std::size_t i, const double* deps, double* sigma) const override;
+  void tangent(std::size_t i, const double* deps, double* sigma, double* D) const override;
+  /// "eq_plastic_strain" (xi), "plastic_strain" (3 x 3), "yielded" (1 where xi > 0),
+  /// "lbc_flagged" (1 where the LBC correction flagged the particle), all committed.
+  std::vector<LawField> state_fields() const override;
+  void state_field(const std::string& name, std::vector<double>& values) const override;
 
   /// LBC correction: flags every unflagged particle whose kept trial violates the yield
   /// condition, f > tolerance * (A I1 + B) m (a relative tolerance on the yield stress).
@@ -114,17 +115,14 @@ class PlasticPoints final : public PointwiseLaw, public LawHistory {
   void strain(const double* H, double* eps) const;
   /// The d x d block of a 3 x 3 tensor.
   void in_plane(const double* t3, double* t) const;
-  /// The law's increment from committed state n to grad u = H: the total strain (small
-  /// strain) or F (finite rotation) goes to out.eps, the law's strain increment to deps.
+  /// The law's increment from committed state n to grad u = H: the total strain goes to
+  /// out.eps, its change to deps.
   void increment(const Point& n, const double* H, Point& out, double* deps) const;
-  /// Finite rotation: dP/dH in closed form (finite_rotation_tangent.cpp).
-  void tangent_finite_rotation(std::size_t i, const double* H, double* C) const;
-  /// The d x d first Piola-Kirchhoff stress of a state.
-  void first_piola(const Point& point, double* P) const;
+  /// The law's part of particle i's trial state t by deps, by the mode.
+  void advance(std::size_t i, const double* deps, Point& t) const;
 
   DruckerPrager law_;
   int dim_ = 3;
-  Kinematics kinematics_ = Kinematics::small_strain;
   PlasticMode mode_ = PlasticMode::lbc;
   std::vector<Point> committed_, trial_;
   std::vector<std::uint8_t> flagged_;

@@ -77,16 +77,15 @@ Problem build_plate_problem(const Scene& scene, PhaseTimer* timer);
 Problem build_problem(const Scene& scene, PhaseTimer* timer = nullptr);
 
 /// The fields probes read: displacement u (N x d), 3 x 3 stresses sigma (N x 9), the
-/// displacement gradient H (N x d x d), and the committed plastic states (or nullptr).
+/// displacement gradient H (N x d x d), and the committed xi per particle (or nullptr).
 struct ProbeFields {
   const PointCloud& cloud;
   const std::vector<double>& u;
   const std::vector<double>& sigma;
   const std::vector<double>& H;
-  const PlasticPoints* plastic = nullptr;
   /// grad sigma (N x 9 x d, stress_gradient), needed by reconstructed stress probes only.
   const std::vector<double>* grad_sigma = nullptr;
-  /// The committed xi per particle when `plastic` is not given (nullptr: 0).
+  /// The committed xi per particle (nullptr: 0).
   const std::vector<double>* eq_plastic_strain = nullptr;
   /// Any other field a probe names (a plate's deflection), by name.
   const std::vector<OutputField>* fields = nullptr;
