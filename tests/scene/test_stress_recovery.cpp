@@ -68,7 +68,7 @@ std::pair<double, double> corner_errors(int dim, const std::string& formulation)
   p.as<CorrespondenceModel>().stress3(u.data(), sigma);
   p.as<CorrespondenceModel>().gradient(u.data(), H.data());
   const std::vector<double> grad_sigma = stress_gradient(p.as<CorrespondenceModel>(), sigma);
-  const ProbeFields with{p.cloud, u, sigma, H, nullptr, &grad_sigma};
+  const ProbeFields with{p.cloud, u, sigma, H, &grad_sigma};
   // The analytic stress at the probes' point.
   const double y[3] = {0.0, 0.0, 0.0};
   double Hy[9], exact[9];
