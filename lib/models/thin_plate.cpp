@@ -17,7 +17,7 @@ ThinPlateModel::ThinPlateModel(PlateCloud plate, const Families& families, const
   if (opt.stabilization > 0.0) {
     std::vector<double> area(n, 0.0);
     std::copy(plate_.area.begin(), plate_.area.end(), area.begin());
-    S_.emplace(c, op_, second_order_stabilization_coefficients(c, op_, opt.stabilization, D0_, area));
+    S_.emplace(c, op_, bending_scale(op_, opt.stabilization, D0_, std::move(area)));
   }
   ghost_off_.assign(phys + 1, 0);
   for (const ParticleId m : plate_.image) ++ghost_off_[m + 1];
@@ -61,7 +61,7 @@ void ThinPlateModel::internal_force(const double* w, double* f) {
     Q_[i * 3] = A * M[0], Q_[i * 3 + 1] = 2.0 * A * M[1], Q_[i * 3 + 2] = A * M[2];
   }
   op_.apply_transpose(Q_.data(), 1, fe_.data(), nullptr, Derivative::hessian);
-  if (S_) S_->add_force(ext_.data(), grad_.data(), hess_.data(), fe_.data());
+  if (S_) S_->add_force(ext_.data(), 1, grad_.data(), hess_.data(), fe_.data());
   std::copy(fe_.begin(), fe_.begin() + phys, f);
   for (std::size_t g = 0; g < plate_.image.size(); ++g) f[plate_.image[g]] += plate_.sign[g] * fe_[phys + g];
 }
@@ -75,7 +75,7 @@ double ThinPlateModel::energy(const double* w) {
     moment(k, M);
     W += 0.5 * plate_.area[i] * (M[0] * k[0] + 2.0 * M[1] * k[1] + M[2] * k[2]);
   }
-  return W + (S_ ? S_->energy(ext_.data(), grad_.data(), hess_.data()) : 0.0);
+  return W + (S_ ? S_->energy(ext_.data(), 1, grad_.data(), hess_.data()) : 0.0);
 }
 
 std::vector<double> ThinPlateModel::lumped_mass() const {

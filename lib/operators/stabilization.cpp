@@ -1,158 +1,308 @@
 #include "perinom/operators/stabilization.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "operator_access.hpp"
+#include "perinom/core/parallel.hpp"
 
 namespace perinom {
 namespace {
 
-double dot(const double* a, const double* b, int d) {
+double dot(const double* a, const double* b, int n) {
   double s = 0.0;
-  for (int k = 0; k < d; ++k) s += a[k] * b[k];
+  for (int k = 0; k < n; ++k) s += a[k] * b[k];
   return s;
 }
 
-// z = u_j - u_i - H_i (x_j - x_i) for one bond, d components.
-template <int D>
-inline void bond_z(const double* ui, const double* uj, const double* Hi, const double* xi,
-                   const double* xj, double* z, double* xi_ij) {
-  for (int b = 0; b < D; ++b) xi_ij[b] = xj[b] - xi[b];
-  for (int a = 0; a < D; ++a) {
-    double s = uj[a] - ui[a];
-    for (int b = 0; b < D; ++b) s -= Hi[a * D + b] * xi_ij[b];
-    z[a] = s;
+// p_ij of the fit of basis size NB in D dimensions: xi = x_j - x_i, then (order 2) the
+// quadratic terms, 1/2 xi_a^2 on the diagonal.
+template <int D, int NB>
+inline void basis(const double* xi, const double* xj, double* p) {
+  for (int a = 0; a < D; ++a) p[a] = xj[a] - xi[a];
+  if constexpr (NB > D) {
+    int r = D;
+    for (int a = 0; a < D; ++a)
+      for (int b = a; b < D; ++b) p[r++] = a == b ? 0.5 * p[a] * p[a] : p[a] * p[b];
   }
 }
 
-template <int D>
-void row_pass(std::size_t n, const Offset* off, const ParticleId* col, const double* wv,
-              const double* cv, const double* x, const double* u, const double* H, double* B,
+// z = u_j - u_i - D_i p for one bond, C components; g_i (C x D) and h_i (C x (NB - D)) are
+// particle i's derivatives.
+template <int D, int NB, int C>
+inline void bond_z(const double* ui, const double* uj, const double* gi, const double* hi, const double* p,
+                   double* z) {
+  constexpr int M = NB - D;
+  for (int c = 0; c < C; ++c) {
+    double s = uj[c] - ui[c];
+    for (int q = 0; q < D; ++q) s -= gi[c * D + q] * p[q];
+    if constexpr (M > 0)
+      for (int q = 0; q < M; ++q) s -= hi[c * M + q] * p[D + q];
+    z[c] = s;
+  }
+}
+
+// The arrays of one field: u (N x C), its gradient (N x C x D) and Hessian (N x C x M).
+struct Field {
+  const double* u;
+  const double* grad;
+  const double* hess;
+};
+
+template <int D, int NB, int C>
+inline void z_of(const Field& f, const double* x, std::size_t i, std::size_t j, double* p, double* z) {
+  constexpr int M = NB - D;
+  basis<D, NB>(x + i * D, x + j * D, p);
+  bond_z<D, NB, C>(f.u + i * C, f.u + j * C, f.grad + i * C * D, M > 0 ? f.hess + i * C * M : nullptr, p, z);
+}
+
+template <int D, int NB, int C, bool WithB>
+void row_pass(const BondGraph& g, const double* wv, const double* cv, const double* x, const Field& f, double* B,
               double* r) {
+  const std::size_t n = g.rows();
+  const Offset* off = g.offsets().data();
+  const ParticleId* col = g.cols().data();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    double Bi[D * D] = {}, ri[D] = {}, z[D], xi_ij[D];
-    for (Offset k = off[i]; k < off[i + 1]; ++k) {
-      const std::size_t j = col[k];
-      bond_z<D>(u + i * D, u + j * D, H + i * D * D, x + i * D, x + j * D, z, xi_ij);
-      const double beta = cv[i] * wv[k];
-      for (int a = 0; a < D; ++a) {
-        ri[a] += beta * z[a];
-        for (int b = 0; b < D; ++b) Bi[a * D + b] += beta * z[a] * xi_ij[b];
+    double Bi[C * D] = {}, ri[C] = {}, z[C], p[NB];
+    if (cv[i] > 0.0)
+      for (Offset k = off[i]; k < off[i + 1]; ++k) {
+        z_of<D, NB, C>(f, x, i, col[k], p, z);
+        if constexpr (WithB) {  // beta_ij per bond, as B needs it
+          const double beta = cv[i] * wv[k];
+          for (int c = 0; c < C; ++c) {
+            ri[c] += beta * z[c];
+            for (int b = 0; b < D; ++b) Bi[c * D + b] += beta * z[c] * p[b];
+          }
+        } else {  // cv_i once per row
+          for (int c = 0; c < C; ++c) ri[c] += wv[k] * z[c];
+        }
       }
-    }
-    for (int k = 0; k < D * D; ++k) B[i * D * D + k] = Bi[k];
-    for (int a = 0; a < D; ++a) r[i * D + a] = ri[a];
+    if constexpr (WithB)
+      for (int k = 0; k < C * D; ++k) B[i * C * D + k] = Bi[k];
+    for (int c = 0; c < C; ++c) r[i * C + c] = WithB ? ri[c] : cv[i] * ri[c];
   }
 }
 
-template <int D>
-void dual_pass(std::size_t n, const Offset* off, const ParticleId* col, const double* t_wv,
-               const double* cv, const double* x, const double* u, const double* H,
+template <int D, int NB, int C>
+void dual_pass(const BondGraph& g, const double* t_wv, const double* cv, const double* x, const Field& f,
                const double* r, double* out) {
+  const std::size_t n = g.rows();
+  const Offset* off = g.dual_offsets().data();
+  const ParticleId* col = g.dual_cols().data();
 #pragma omp parallel for schedule(static)
   for (std::size_t l = 0; l < n; ++l) {
-    double acc[D], z[D], xi_il[D];
-    for (int a = 0; a < D; ++a) acc[a] = -r[l * D + a];
-    for (Offset k = off[l]; k < off[l + 1]; ++k) {
-      const std::size_t i = col[k];  // l is in H_i
-      bond_z<D>(u + i * D, u + l * D, H + i * D * D, x + i * D, x + l * D, z, xi_il);
-      const double beta = cv[i] * t_wv[k];
-      for (int a = 0; a < D; ++a) acc[a] += beta * z[a];
+    double acc[C], z[C], p[NB];
+    for (int c = 0; c < C; ++c) acc[c] = -r[l * C + c];
+    for (Offset t = off[l]; t < off[l + 1]; ++t) {
+      const std::size_t i = col[t];  // l is in H_i
+      if (!(cv[i] > 0.0)) continue;
+      z_of<D, NB, C>(f, x, i, l, p, z);
+      const double beta = cv[i] * t_wv[t];
+      for (int c = 0; c < C; ++c) acc[c] += beta * z[c];
     }
-    for (int a = 0; a < D; ++a) out[l * D + a] += acc[a];
+    for (int c = 0; c < C; ++c) out[l * C + c] += acc[c];
   }
+}
+
+template <int D, int NB, int C>
+double energy_pass(const BondGraph& g, const double* wv, const double* cv, const double* x, const Field& f) {
+  // parallel_sums: the same sum for any thread count (a reduction clause is not).
+  return parallel_sums<1>(g.rows(), [&](std::size_t i, double* acc) {
+    if (!(cv[i] > 0.0)) return;
+    double s = 0.0, z[C], p[NB];
+    for (Offset k = g.begin(i); k < g.end(i); ++k) {
+      z_of<D, NB, C>(f, x, i, g.col(k), p, z);
+      for (int c = 0; c < C; ++c) s += wv[k] * z[c] * z[c];
+    }
+    acc[0] += 0.5 * cv[i] * s;
+  })[0];
+}
+
+// The compile-time shape of a pass: D dimensions, basis size NB, C components.
+template <int D_, int NB_, int C_>
+struct Shape {
+  static constexpr int D = D_, NB = NB_, C = C_;
+};
+
+// Calls fn(Shape<D, NB, C>{}) for the shapes the library uses: a vector field (C = d) of
+// either order, a scalar field of the second-order fit (the plate).
+template <class Fn>
+auto dispatch(int d, int nb, int components, Fn&& fn) {
+  if (d == 2 && nb == 2 && components == 2) return fn(Shape<2, 2, 2>{});
+  if (d == 3 && nb == 3 && components == 3) return fn(Shape<3, 3, 3>{});
+  if (d == 2 && nb == 5 && components == 2) return fn(Shape<2, 5, 2>{});
+  if (d == 3 && nb == 9 && components == 3) return fn(Shape<3, 9, 3>{});
+  if (d == 2 && nb == 5 && components == 1) return fn(Shape<2, 5, 1>{});
+  if (d == 3 && nb == 9 && components == 1) return fn(Shape<3, 9, 1>{});
+  throw std::invalid_argument("Stabilization: a field of " + std::to_string(components) + " components in " +
+                              std::to_string(d) + "-D with a basis of " + std::to_string(nb) +
+                              " (supported: d components at order 1, 1 or d at order 2)");
 }
 
 }  // namespace
 
-Stabilization::Stabilization(const PointCloud& cloud, const NonlocalOperator& G, double modulus)
-    : dim_(cloud.dim), modulus_(modulus), G_(&G), x_(cloud.x), cv_(cloud.size()), wv_(OperatorAccess::wv(G)),
-      t_wv_(wv_.size()), volume_(cloud.volume) {
-  const BondGraph& g = G.graph();
-  for (std::size_t i = 0; i < cloud.size(); ++i) refresh_coefficient(i, volume_);
+Stabilization::Stabilization(const PointCloud& cloud, const NonlocalOperator& fit, StabilizationScale scale)
+    : dim_(cloud.dim), nb_(fit.order() == 1 ? cloud.dim : cloud.dim + fit.hessian_terms()), fit_(&fit),
+      scale_(std::move(scale)), x_(cloud.x), cv_(cloud.size()), wv_(OperatorAccess::wv(fit)), t_wv_(wv_.size()) {
+  if (fit.order() == 2 && !fit.has_hessian())
+    throw std::invalid_argument("Stabilization: the second-order fit has no Hessian weights");
+  const BondGraph& g = fit.graph();
+  for (std::size_t i = 0; i < cloud.size(); ++i) cv_[i] = fit.is_detached(i) ? 0.0 : scale_(i);
   for (std::size_t k = 0; k < wv_.size(); ++k) {
     if (!g.alive(static_cast<Offset>(k))) wv_[k] = 0.0;
     t_wv_[g.dual_entry(static_cast<Offset>(k))] = wv_[k];
   }
 }
 
-void Stabilization::refresh_coefficient(std::size_t i, const std::vector<double>& volume) {
-  const int d = dim_;
-  double tr = 0.0;
-  for (int a = 0; a < d; ++a) tr += G_->shape(i)[a * d + a];
-  cv_[i] = G_->is_detached(i) || !(tr > 0.0) ? 0.0 : modulus_ / tr * volume[i];
+Stabilization::Stabilization(const PointCloud& cloud, const NonlocalOperator& G, double modulus)
+    : Stabilization(cloud, G, shape_scale(G, modulus, cloud.volume)) {}
+
+void Stabilization::refresh_row(ParticleId i) {
+  const BondGraph& g = fit_->graph();
+  const std::vector<double>& wv = OperatorAccess::wv(*fit_);
+  cv_[i] = fit_->is_detached(i) ? 0.0 : scale_(i);
+  for (Offset k = g.begin(i); k < g.end(i); ++k) t_wv_[g.dual_entry(k)] = wv_[k] = g.alive(k) ? wv[k] : 0.0;
 }
 
 void Stabilization::refresh_rows(const std::vector<ParticleId>& rows) {
-  const BondGraph& g = G_->graph();
-  const std::vector<double>& wv = OperatorAccess::wv(*G_);
   // Each row writes its own bonds, in both orders (distinct dual entries).
 #pragma omp parallel for schedule(dynamic, 16) if (rows.size() > 64)
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    const ParticleId i = rows[r];
-    refresh_coefficient(i, volume_);
-    for (Offset k = g.begin(i); k < g.end(i); ++k) t_wv_[g.dual_entry(k)] = wv_[k] = g.alive(k) ? wv[k] : 0.0;
-  }
+  for (std::size_t r = 0; r < rows.size(); ++r) refresh_row(rows[r]);
 }
 
-void Stabilization::bond_terms(const double* u, const double* H, double* B, double* r) const {
-  const std::size_t n = cv_.size();
-  const Offset* off = G_->graph().offsets().data();
-  const ParticleId* col = G_->graph().cols().data();
-  if (dim_ == 2) row_pass<2>(n, off, col, wv_.data(), cv_.data(), x_.data(), u, H, B, r);
-  else row_pass<3>(n, off, col, wv_.data(), cv_.data(), x_.data(), u, H, B, r);
+void Stabilization::bond_terms(const double* u, int components, const double* grad, const double* hess, double* B,
+                               double* r) const {
+  const Field f{u, grad, hess};
+  if (B && nb_ != dim_) throw std::invalid_argument("Stabilization::bond_terms: B is first-order only");
+  dispatch(dim_, nb_, components, [&](auto s) {
+    using S = decltype(s);
+    if (B) row_pass<S::D, S::NB, S::C, true>(fit_->graph(), wv_.data(), cv_.data(), x_.data(), f, B, r);
+    else row_pass<S::D, S::NB, S::C, false>(fit_->graph(), wv_.data(), cv_.data(), x_.data(), f, B, r);
+  });
 }
 
-void Stabilization::add_direct(const double* u, const double* H, const double* r, double* out) const {
-  const std::size_t n = cv_.size();
-  const Offset* off = G_->graph().dual_offsets().data();
-  const ParticleId* col = G_->graph().dual_cols().data();
-  if (dim_ == 2) dual_pass<2>(n, off, col, t_wv_.data(), cv_.data(), x_.data(), u, H, r, out);
-  else dual_pass<3>(n, off, col, t_wv_.data(), cv_.data(), x_.data(), u, H, r, out);
+void Stabilization::add_direct(const double* u, int components, const double* grad, const double* hess,
+                               const double* r, double* out) const {
+  const Field f{u, grad, hess};
+  dispatch(dim_, nb_, components, [&](auto s) {
+    using S = decltype(s);
+    dual_pass<S::D, S::NB, S::C>(fit_->graph(), t_wv_.data(), cv_.data(), x_.data(), f, r, out);
+  });
 }
 
-void Stabilization::add_row(std::size_t r, RowAccumulator& acc, int copies) const {
-  const int d = dim_;
-  const NonlocalOperator& G = *G_;
-  const BondGraph& g = G.graph();
-  using A = OperatorAccess;
-  double scratch[6];
-  auto add = [&](ParticleId j, double v) {
-    double* block = acc.at(j);
-    for (int k = 0; k < copies; ++k) block[k * (copies + 1)] += v;
+void Stabilization::add_force(const double* u, int components, const double* grad, const double* hess,
+                              double* out) {
+  r_.resize(cv_.size() * static_cast<std::size_t>(components));
+  bond_terms(u, components, grad, hess, nullptr, r_.data());
+  add_direct(u, components, grad, hess, r_.data(), out);
+}
+
+double Stabilization::energy(const double* u, int components, const double* grad, const double* hess) const {
+  const Field f{u, grad, hess};
+  return dispatch(dim_, nb_, components, [&](auto s) {
+    using S = decltype(s);
+    return energy_pass<S::D, S::NB, S::C>(fit_->graph(), wv_.data(), cv_.data(), x_.data(), f);
+  });
+}
+
+const double* Stabilization::fit_weights(Offset k, double* out) const {
+  const double* g = OperatorAccess::weights(*fit_, k, out);
+  if (nb_ == dim_) return g;
+  if (g != out) std::copy(g, g + dim_, out);
+  for (int q = 0; q < nb_ - dim_; ++q) out[dim_ + q] = OperatorAccess::weight(*fit_, k, q, Derivative::hessian);
+  return out;
+}
+
+const double* Stabilization::fit_diagonal(std::size_t i, double* out) const {
+  const double* g = OperatorAccess::diagonal(*fit_, i);
+  if (nb_ == dim_) return g;
+  std::copy(g, g + dim_, out);
+  const double* h = OperatorAccess::diagonal(*fit_, i, Derivative::hessian);
+  std::copy(h, h + (nb_ - dim_), out + dim_);
+  return out;
+}
+
+template <class Add>
+void Stabilization::row(std::size_t r, Add&& add) const {
+  const int d = dim_, nb = nb_;
+  const BondGraph& g = fit_->graph();
+  double p[9], weights[9], diagonal[9];
+  auto p_of = [&](std::size_t i, std::size_t j) {
+    const double* xi = x_.data() + i * d;
+    const double* xj = x_.data() + j * d;
+    if (d == 2) nb == 2 ? basis<2, 2>(xi, xj, p) : basis<2, 5>(xi, xj, p);
+    else nb == 3 ? basis<3, 3>(xi, xj, p) : basis<3, 9>(xi, xj, p);
   };
-  const double* xr = x_.data() + r * d;
-  // Row r of M_r (r is the centre): A_r = -sum_k a_rk, a_rk = w_rk V_k xi_rk.
+  // Row r of the block of centre r: A_r = -sum_k a_rk, a_rk = w_rk V_k p_rk.
   if (cv_[r] > 0.0) {
     const double scale = cv_[r];
-    double s[3] = {0, 0, 0}, wsum = 0.0;
+    double s[9] = {}, wsum = 0.0;
     for (Offset k = g.begin(r); k < g.end(r); ++k) {
-      const double* xj = x_.data() + static_cast<std::size_t>(g.col(k)) * d;
-      for (int a = 0; a < d; ++a) s[a] -= wv_[k] * (xj[a] - xr[a]);
+      p_of(r, g.col(k));
+      for (int q = 0; q < nb; ++q) s[q] -= wv_[k] * p[q];
       wsum += wv_[k];
     }
-    add(static_cast<ParticleId>(r), scale * (wsum - dot(s, A::diagonal(G, r), d)));
+    // The family first, then r itself: a model that folds columns together (the plate's
+    // ghosts onto their images) sums them in this order.
     for (Offset k = g.begin(r); k < g.end(r); ++k)
-      if (g.alive(k)) add(g.col(k), scale * (-wv_[k] - dot(s, A::weights(G, k, scratch), d)));
+      if (g.alive(k)) add(g.col(k), scale * (-wv_[k] - dot(s, fit_weights(k, weights), nb)));
+    add(static_cast<ParticleId>(r), scale * (wsum - dot(s, fit_diagonal(r, diagonal), nb)));
   }
-  // Row r of M_i for every i whose family holds r: A_r = a_ir = w_ir V_r xi_ir.
+  // Row r of the block of every centre i whose family holds r: with c = cv_i w_ir V_r,
+  // c (e_r - e_i - sum_k (p_ir . a_ik) (e_k - e_i)).
   for (Offset t = g.dual_begin(r); t < g.dual_end(r); ++t) {
     const ParticleId i = g.dual_col(t);
-    const double scale = cv_[i];
-    if (!g.dual_alive(t) || !(scale > 0.0)) continue;
-    const double* xi = x_.data() + static_cast<std::size_t>(i) * d;
-    double a[3] = {0, 0, 0};
-    for (int c = 0; c < d; ++c) a[c] = t_wv_[t] * (xr[c] - xi[c]);
-    add(static_cast<ParticleId>(r), scale * t_wv_[t]);
-    add(i, scale * (-t_wv_[t] - dot(a, A::diagonal(G, i), d)));
+    if (!g.dual_alive(t) || !(cv_[i] > 0.0)) continue;
+    const double c = cv_[i] * t_wv_[t];
+    p_of(i, r);
+    add(static_cast<ParticleId>(r), c);
+    add(i, -c * (1.0 + dot(p, fit_diagonal(i, diagonal), nb)));
     for (Offset k = g.begin(i); k < g.end(i); ++k)
-      if (g.alive(k)) add(g.col(k), -scale * dot(a, A::weights(G, k, scratch), d));
+      if (g.alive(k)) add(g.col(k), -c * dot(p, fit_weights(k, weights), nb));
   }
 }
 
+void Stabilization::add_row(std::size_t i, RowAccumulator& acc, int copies) const {
+  row(i, [&acc, copies](ParticleId j, double v) {
+    double* block = acc.at(j);
+    for (int k = 0; k < copies; ++k) block[k * (copies + 1)] += v;
+  });
+}
+
+void Stabilization::add_row(std::size_t i, const std::function<void(ParticleId, double)>& add) const { row(i, add); }
+
 std::size_t Stabilization::memory_bytes() const {
-  return (x_.size() + cv_.size() + wv_.size() + t_wv_.size() + volume_.size()) * sizeof(double);
+  return (x_.size() + cv_.size() + wv_.size() + t_wv_.size() + r_.size()) * sizeof(double);
+}
+
+StabilizationScale shape_scale(const NonlocalOperator& G, double modulus, std::vector<double> volume) {
+  return [&G, modulus, volume = std::move(volume)](std::size_t i) {
+    const int d = G.dim();
+    double tr = 0.0;
+    for (int a = 0; a < d; ++a) tr += G.shape(i)[a * d + a];
+    return G.is_detached(i) || !(tr > 0.0) ? 0.0 : modulus / tr * volume[i];
+  };
+}
+
+StabilizationScale bending_scale(const NonlocalOperator& op, double c_hg, double rigidity, std::vector<double> area) {
+  return [&op, c_hg, rigidity, area = std::move(area)](std::size_t i) {
+    if (!(area[i] > 0.0) || !(c_hg > 0.0) || op.is_detached(i)) return 0.0;
+    const int d = op.dim();
+    const std::vector<double>& wv = OperatorAccess::wv(op);
+    const std::vector<double>& x = OperatorAccess::positions(op);
+    double q = 0.0;
+    op.graph().for_each_live(i, [&](Offset k, ParticleId j) {
+      double r2 = 0.0;
+      for (int a = 0; a < d; ++a) {
+        const double e = x[static_cast<std::size_t>(j) * d + a] - x[i * d + a];
+        r2 += e * e;
+      }
+      q += wv[k] * r2 * r2 / 4.0;
+    });
+    return c_hg * rigidity * area[i] / q;
+  };
 }
 
 ScalarCsr assemble_stabilization(const Stabilization& S, std::size_t n) {

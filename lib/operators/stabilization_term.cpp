@@ -6,24 +6,10 @@
 #include "perinom/core/error.hpp"
 #include "perinom/core/parallel.hpp"
 #include "perinom/operators/fused_stabilization.hpp"
-#include "perinom/operators/second_order_stabilization.hpp"
 #include "perinom/operators/stabilization.hpp"
 
 namespace perinom {
 namespace {
-
-// cv_i = modulus / tr K_i * V_i from G's shape tensors (0 for a detached particle): the
-// first-order scale of the second-order operator energy.
-std::vector<double> second_order_scale(const NonlocalOperator& G, double modulus, const std::vector<double>& volume) {
-  const int d = G.dim();
-  std::vector<double> cv(G.rows(), 0.0);
-  for (std::size_t i = 0; i < G.rows(); ++i) {
-    double tr = 0.0;
-    for (int a = 0; a < d; ++a) tr += G.shape(i)[a * d + a];
-    if (!G.is_detached(i) && tr > 0.0) cv[i] = modulus / tr * volume[i];
-  }
-  return cv;
-}
 
 // S u = G^T(-B) + the direct bond pass (Stabilization).
 class MatrixFreeTerm final : public StabilizationTerm {
@@ -116,53 +102,37 @@ class AssembledTerm final : public StabilizationTerm {
   std::string name_;
 };
 
-// The second-order operator energy (seed 002 eq. 35-39) of each of the d components, matrix-free:
-// the fit with its Hessian kept, one bond pass in each order per component. Refreshable.
+// The second-order operator energy (seed 002 eq. 35-39) of the d components, matrix-free: the
+// fit with its Hessian kept, one bond pass in each order. Refreshable.
 class SecondOrderMatrixFreeTerm final : public StabilizationTerm {
  public:
   SecondOrderMatrixFreeTerm(const PointCloud& cloud, const NonlocalOperator& G, const BondWeights& weights,
                             double modulus)
-      : StabilizationTerm(G), modulus_(modulus), volume_(cloud.volume),
-        fit_(cloud, G.shared_graph(), weights, OperatorOptions{2, true}), S_(cloud, fit_, coefficients()),
-        f_(cloud.size()), grad_(cloud.size() * cloud.dim), hess_(cloud.size() * fit_.hessian_terms()),
-        out_(cloud.size()) {}
+      : StabilizationTerm(G), fit_(cloud, G.shared_graph(), weights, OperatorOptions{2, true}),
+        S_(cloud, fit_, shape_scale(G, modulus, cloud.volume)), grad_(cloud.size() * cloud.dim * cloud.dim),
+        hess_(cloud.size() * cloud.dim * fit_.hessian_terms()) {}
   AssemblyLevel level() const override { return AssemblyLevel::matrix_free; }
   const double* tensor_part(const double*, const double*) override { return nullptr; }
   void add_rest(const double* u, const double*, double* f) override {
     const int d = G_->dim();
-    const std::size_t n = f_.size();
-    for (int c = 0; c < d; ++c) {
-      for (std::size_t i = 0; i < n; ++i) f_[i] = u[i * d + c];
-      fit_.apply(f_.data(), 1, grad_.data());
-      fit_.apply(f_.data(), 1, hess_.data(), Derivative::hessian);
-      std::fill(out_.begin(), out_.end(), 0.0);
-      S_.add_force(f_.data(), grad_.data(), hess_.data(), out_.data());
-      for (std::size_t i = 0; i < n; ++i) f[i * d + c] += out_[i];
-    }
+    fit_.apply(u, d, grad_.data());
+    fit_.apply(u, d, hess_.data(), Derivative::hessian);
+    S_.add_force(u, d, grad_.data(), hess_.data(), f);
   }
-  void add_row(std::size_t i, RowAccumulator& acc, int copies) const override {
-    S_.add_row(i, [&acc, copies](ParticleId j, double v) {
-      double* block = acc.at(j);
-      for (int k = 0; k < copies; ++k) block[k * (copies + 1)] += v;
-    });
-  }
+  void add_row(std::size_t i, RowAccumulator& acc, int copies) const override { S_.add_row(i, acc, copies); }
   void refresh_rows(const std::vector<ParticleId>& rows) override {
     fit_.refresh_rows(rows);
-    S_.refresh_rows(rows, coefficients());
+    S_.refresh_rows(rows);
   }
   std::string name() const override { return "second-order stabilization (matrix-free)"; }
   std::size_t memory_bytes() const override {
-    return fit_.memory_bytes() + S_.memory_bytes() +
-           (volume_.size() + f_.size() + grad_.size() + hess_.size() + out_.size()) * sizeof(double);
+    return fit_.memory_bytes() + S_.memory_bytes() + (grad_.size() + hess_.size()) * sizeof(double);
   }
 
  private:
-  std::vector<double> coefficients() const { return second_order_scale(*G_, modulus_, volume_); }
-  double modulus_;
-  std::vector<double> volume_;
   NonlocalOperator fit_;
-  SecondOrderStabilization S_;
-  std::vector<double> f_, grad_, hess_, out_;  // one component, its gradient and Hessian, its force
+  Stabilization S_;
+  std::vector<double> grad_, hess_;  // the fit's derivatives of u
 };
 
 }  // namespace
@@ -215,9 +185,8 @@ std::unique_ptr<StabilizationTerm> make_stabilization(const PointCloud& cloud, c
     case AssemblyLevel::assembled: {
       // The Hessian weights only enter z_ij (seed 002 eq. 35): S is stored, the fit dropped.
       const NonlocalOperator fit(cloud, G.shared_graph(), weights, OperatorOptions{2, true});
-      const SecondOrderStabilization S(cloud, fit, second_order_scale(G, modulus, cloud.volume));
-      return stored_stabilization(G, assemble_second_order_stabilization(S, cloud.size()),
-                                  "second-order stabilization S");
+      const Stabilization S(cloud, fit, shape_scale(G, modulus, cloud.volume));
+      return stored_stabilization(G, assemble_stabilization(S, cloud.size()), "second-order stabilization S");
     }
   }
   throw std::logic_error("make_stabilization: unknown assembly level");

@@ -19,7 +19,6 @@
 #include "perinom/neighbors/search.hpp"
 #include "perinom/operators/fused_stabilization.hpp"
 #include "perinom/operators/nonlocal_operator.hpp"
-#include "perinom/operators/second_order_stabilization.hpp"
 #include "perinom/operators/stabilization.hpp"
 #include "perinom/operators/stabilization_term.hpp"
 #include "perinom/operators/tangent_rows.hpp"
@@ -87,7 +86,7 @@ TEST_CASE("refreshing the rows of broken bonds equals building without them", "[
     // The stabilizations of every storage, built before the breaks and refreshed after.
     std::optional<Stabilization> S;
     std::optional<FusedStabilization> F;
-    std::optional<SecondOrderStabilization> S2;
+    std::optional<Stabilization> S2;
     ScalarCsr S0;
     std::vector<double> area(cloud.size(), 1.0);
     // The same S behind the model's interface, at every assembly level the families allow.
@@ -105,8 +104,8 @@ TEST_CASE("refreshing the rows of broken bonds equals building without them", "[
       REQUIRE(F.has_value() == !k.knn);
       S0 = assemble_stabilization(*S, cloud.size());
     } else {
-      S2.emplace(cloud, G, second_order_stabilization_coefficients(cloud, G, 0.5, 1.0, area));
-      S0 = assemble_second_order_stabilization(*S2, cloud.size());
+      S2.emplace(cloud, G, bending_scale(G, 0.5, 1.0, area));
+      S0 = assemble_stabilization(*S2, cloud.size());
     }
 
     const std::vector<Bond> breaks = random_bonds(f, cloud.size() / 8, 17);
@@ -118,8 +117,8 @@ TEST_CASE("refreshing the rows of broken bonds equals building without them", "[
     for (auto& term : terms) term->refresh_rows(rows);
     if (T2) T2->refresh_rows(rows);
     if (S2) {
-      S2->refresh_rows(rows, second_order_stabilization_coefficients(cloud, G, 0.5, 1.0, area));
-      refresh_second_order_stabilization(S0, *S2, *graph, rows);
+      S2->refresh_rows(rows);
+      refresh_stabilization(S0, *S2, *graph, rows);
     }
     REQUIRE(G.detached().empty());
 
@@ -203,19 +202,19 @@ TEST_CASE("refreshing the rows of broken bonds equals building without them", "[
         CHECK(relative_difference(sums_a, sums_b) <= tolerance);
       }
     } else {
-      SecondOrderStabilization SB(cloud, B, second_order_stabilization_coefficients(cloud, B, 0.5, 1.0, area));
-      const ScalarCsr S0b = assemble_second_order_stabilization(SB, cloud.size());
+      Stabilization SB(cloud, B, bending_scale(B, 0.5, 1.0, area));
+      const ScalarCsr S0b = assemble_stabilization(SB, cloud.size());
       CHECK(rows_difference(scalar_rows(S0), scalar_rows(S0b)) <= tolerance);
       const auto w = test::random_field(cloud.size(), 1.0, 8);
       std::vector<double> g(cloud.size() * d), h(cloud.size() * G.hessian_terms());
       B.apply(w.data(), 1, g.data());
       B.apply(w.data(), 1, h.data(), Derivative::hessian);
       std::vector<double> fa(cloud.size(), 0.0), fb(cloud.size(), 0.0);
-      S2->add_force(w.data(), g.data(), h.data(), fa.data());
-      SB.add_force(w.data(), g.data(), h.data(), fb.data());
+      S2->add_force(w.data(), 1, g.data(), h.data(), fa.data());
+      SB.add_force(w.data(), 1, g.data(), h.data(), fb.data());
       CHECK(relative_difference(fa, fb) <= tolerance);
-      CHECK(std::abs(S2->energy(w.data(), g.data(), h.data()) - SB.energy(w.data(), g.data(), h.data())) <=
-            tolerance * SB.energy(w.data(), g.data(), h.data()));
+      CHECK(std::abs(S2->energy(w.data(), 1, g.data(), h.data()) - SB.energy(w.data(), 1, g.data(), h.data())) <=
+            tolerance * SB.energy(w.data(), 1, g.data(), h.data()));
       // The order-2 matrix-free level, refreshed, against the same built without the bonds:
       // S u and the tangent rows; and against the assembled level (the same S).
       const Families& fb2 = B.graph().families();
@@ -387,7 +386,7 @@ TEST_CASE("the second-order stabilization energy gives the same bits on 1 and 2 
   const Families f = knn_families(cloud, 14);
   const NonlocalOperator D(cloud, f, bond_weights(cloud, f, Influence::inverse_square), OperatorOptions{2, true});
   const std::vector<double> area(cloud.size(), 1.0);
-  const SecondOrderStabilization S(cloud, D, second_order_stabilization_coefficients(cloud, D, 0.5, 1.0, area));
+  const Stabilization S(cloud, D, bending_scale(D, 0.5, 1.0, area));
   const auto w = test::random_field(cloud.size(), 1.0, 13);
   std::vector<double> g(cloud.size() * 2), h(cloud.size() * 3);
   D.apply(w.data(), 1, g.data());
@@ -396,7 +395,7 @@ TEST_CASE("the second-order stabilization energy gives the same bits on 1 and 2 
   const int before = omp_get_max_threads();
   for (const int t : {0, 1}) {
     omp_set_num_threads(t + 1);
-    energy[t] = S.energy(w.data(), g.data(), h.data());
+    energy[t] = S.energy(w.data(), 1, g.data(), h.data());
   }
   omp_set_num_threads(before);
   CHECK(std::memcmp(&energy[0], &energy[1], sizeof(double)) == 0);

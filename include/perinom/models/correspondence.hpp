@@ -63,7 +63,7 @@ struct CorrespondenceOptions {
   /// 1: G from the first-order fit (THEORY sec. 2), stabilized by S (sec. 4).
   /// 2: G from the gradient weights of the second-order fit (sec. 6; exact for quadratic
   ///    fields, boundary particles included), stabilized by the second-order operator energy
-  ///    (seed 002 eq. 35-39, second_order_stabilization.hpp): assembled (the fit's Hessian
+  ///    (seed 002 eq. 35-39, operators/stabilization.hpp): assembled (the fit's Hessian
   ///    weights serve only to assemble S and are not kept) or matrix_free (the fit is kept).
   int operator_order = 1;
   /// A Drucker-Prager law in place of the linear elastic one (its E and nu must be the

@@ -9,7 +9,7 @@
 #include "perinom/neighbors/families.hpp"
 #include "perinom/operators/influence.hpp"
 #include "perinom/operators/nonlocal_operator.hpp"
-#include "perinom/operators/second_order_stabilization.hpp"
+#include "perinom/operators/stabilization.hpp"
 
 namespace perinom {
 
@@ -19,7 +19,7 @@ struct ThinPlateOptions {
   double thickness = 0.0;  ///< t (m)
   double density = 0.0;    ///< rho (kg/m^3)
   Influence influence = Influence::inverse_square;
-  double stabilization = 0.5;  ///< C_hg of the operator energy (second_order_stabilization.hpp); 0: none
+  double stabilization = 0.5;  ///< C_hg of the operator energy (operators/stabilization.hpp); 0: none
   /// How each edge is held (0 xmin, 1 xmax, 2 ymin, 3 ymax), as the PlateCloud's ghosts were
   /// made; for the plan only (the ghosts and the Loading carry the conditions).
   PlateEdges edges{EdgeSupport::free, EdgeSupport::free, EdgeSupport::free, EdgeSupport::free};
@@ -82,7 +82,7 @@ class ThinPlateModel : public TangentModel {
   ThinPlateOptions opt_;
   double D0_;
   NonlocalOperator op_;
-  std::optional<SecondOrderStabilization> S_;
+  std::optional<Stabilization> S_;
   std::vector<Offset> ghost_off_;         // per physical node: its ghosts (CSR)
   std::vector<ParticleId> ghost_list_;
   std::vector<double> ext_, grad_, hess_, Q_, fe_;  // workspaces over all nodes
