@@ -42,6 +42,7 @@ void TerminalProgress::update(const ProgressSample& s) {
     if (s.load_steps > 1) std::printf(", load step %d/%d", s.load_step, s.load_steps);
     if (s.target > 0.0) std::printf(", residual %.3e (target %.1e)", s.residual, s.target);
     if (s.time > 0.0) std::printf(", t = %.4g s", s.time);
+    if (s.broken >= 0) std::printf(", %lld bonds broken", static_cast<long long>(s.broken));
     if (left >= 0.0) std::printf(", ~%.0f s left", left);
     std::printf("\n");
     std::fflush(stdout);

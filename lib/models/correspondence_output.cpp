@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "perinom/fracture/bond_measures.hpp"
 #include "perinom/materials/measures.hpp"
 #include "perinom/models/correspondence.hpp"
 
@@ -90,6 +91,8 @@ std::vector<OutputField> CorrespondenceModel::output_fields(const double* u, boo
     out.push_back({"subregion_E", 1, std::vector<double>(surface_.in_band.begin(), surface_.in_band.end())});
     out.push_back({"surface", 1, std::vector<double>(surface_.on_surface.begin(), surface_.on_surface.end())});
   }
+  // Broken bonds: the volume-weighted share of each family that is gone (seed 002 eq. 88).
+  if (graph_->broken() > 0) out.push_back({"damage", 1, damage(*graph_, volume_)});
   // The law's own fields (its committed states; "stress" is the model's above).
   for (const LawField& field : law_->fields()) {
     if (field.name == "stress") continue;

@@ -7,18 +7,21 @@
 
 namespace perinom {
 
-void Loading::fix(std::int64_t dof, double v, int support_index) {
+void Loading::fix(std::int64_t dof, double v, int support_index, double v_rate) {
   const bool tracked = support_index >= 0 || !support.empty();
   if (tracked) support.resize(fixed.size(), -1);
+  if (v_rate != 0.0) rate.resize(fixed.size(), 0.0);
   for (std::size_t k = 0; k < fixed.size(); ++k)
     if (fixed[k] == dof) {
       value[k] = v;
       if (tracked) support[k] = support_index;
+      if (!rate.empty()) rate[k] = v_rate;
       return;
     }
   fixed.push_back(dof);
   value.push_back(v);
   if (tracked) support.push_back(support_index);
+  if (!rate.empty()) rate.push_back(v_rate);
 }
 
 int Loading::add_support(const std::string& name) {
@@ -35,15 +38,15 @@ std::vector<std::string> Loading::reaction_columns(int dpp) const {
   return out;
 }
 
-void Loading::impose(double s, double* u) const {
+void Loading::impose(double s, double* u, double t) const {
   if (couplings.empty()) {
-    for (std::size_t k = 0; k < fixed.size(); ++k) u[fixed[k]] = target(s, k);
+    for (std::size_t k = 0; k < fixed.size(); ++k) u[fixed[k]] = target(s, k, t);
     return;
   }
   for (std::size_t k = 0; k < fixed.size(); ++k) {
     double sum = 0.0;
     for (Offset c = couplings[k]; c < couplings[k + 1]; ++c) sum += coef[c] * u[coupled[c]];
-    u[fixed[k]] = scale[k] * (target(s, k) - sum);
+    u[fixed[k]] = scale[k] * (target(s, k, t) - sum);
   }
 }
 

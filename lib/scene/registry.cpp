@@ -3,9 +3,11 @@
 #include "perinom/scene/registry.hpp"
 
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
+#include "perinom/fracture/bond_breaking.hpp"
 #include "plate_keys.hpp"
 #include "scene_sections.hpp"
 
@@ -95,8 +97,18 @@ std::vector<SolverEntry> make_solvers() {
   verlet.checkpoint_state = "verlet";
   verlet.solve = [](Problem& p, std::vector<double>& u, const SolveHooks& h) {
     std::vector<double> v;
+    std::optional<BondBreaking> breaking;
+    ModelChanges changes;
+    if (const auto& d = p.scene.damage) {
+      DamageCriterion c = DamageCriterion::instability;
+      parse_damage_criterion(d->criterion, c);
+      const double parameter = c == DamageCriterion::instability ? d->s_max : c == DamageCriterion::stretch ? d->s_c : d->f_t;
+      breaking.emplace(p.as<CorrespondenceModel>(), p.cloud, c, parameter);
+      changes = {[&breaking](const double* x) { return breaking->find(x); }, [&breaking] { return breaking->apply(); },
+                 d->every};
+    }
     return solve_verlet(p.physics(), p.loading, verlet_options(p.scene.solver), u, v, h.progress, h.observe,
-                        h.verlet_checkpoints, h.verlet_resume);
+                        h.verlet_checkpoints, h.verlet_resume, breaking ? &changes : nullptr);
   };
   // Newton's own tolerances: its options struct's defaults, not ADR's.
   SolverSpec newton_defaults = d;

@@ -84,14 +84,19 @@ std::vector<BoundarySpec> read_boundary(const std::vector<YAML::Node>& items, co
       if (a < 0) f.fail("fix", "components must be among x, y" + std::string(s.dim == 3 ? ", z" : ""));
       b.fix[a] = true;
     }
-    if (f.has("displacement")) {
-      Fields d = f.map("displacement");
+    for (const char* key : {"displacement", "velocity"}) {
+      if (!f.has(key)) continue;
+      Fields d = f.map(key);
+      auto& target = std::string(key) == "velocity" ? b.velocity : b.displacement;
       for (const char* c : {"x", "y", "z"}) {
         const int a = axis_of(c, s.dim);
-        if (a >= 0 && d.has(c)) b.displacement[a] = d.number(c);
+        if (a >= 0 && d.has(c)) target[a] = d.number(c);
       }
       d.finish();
     }
+    for (int a = 0; a < s.dim; ++a)
+      if (b.velocity[a] && b.displacement[a])
+        f.fail("velocity", "prescribes the same component as displacement (give one of the two)");
     find_model(s.model.type)->read_boundary(f, s, b);
     out.push_back(b);
   }

@@ -80,15 +80,17 @@ Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, 
         if (it == facet_of.end() || data.facets->area[k] > data.facets->area[it->second])
           facet_of[data.facets->particle[k]] = k;
       }
+    auto given = [d](const std::array<std::optional<double>, 3>& v) {
+      return std::any_of(v.begin(), v.begin() + d, [](const std::optional<double>& x) { return x.has_value(); });
+    };
     const bool constrains = std::any_of(b.fix.begin(), b.fix.begin() + d, [](bool f) { return f; }) ||
-                            std::any_of(b.displacement.begin(), b.displacement.begin() + d,
-                                        [](const std::optional<double>& v) { return v.has_value(); });
+                            given(b.displacement) || given(b.velocity);
     const int support = constrains ? load.add_support(b.key) : -1;
     for (int a = 0; a < d; ++a) {
-      if (!b.fix[a] && !b.displacement[a]) continue;
+      if (!b.fix[a] && !b.displacement[a] && !b.velocity[a]) continue;
       for (const auto i : ids) {
         const std::int64_t dof = static_cast<std::int64_t>(i) * d + a;
-        load.fix(dof, b.displacement[a].value_or(0.0), support);
+        load.fix(dof, b.displacement[a].value_or(0.0), support, b.velocity[a].value_or(0.0));
         if (b.at_face) face_of[dof] = {b.region.side, group ? static_cast<std::int64_t>(facet_of.at(i)) : -1};
         else face_of.erase(dof);
       }

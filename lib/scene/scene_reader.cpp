@@ -305,7 +305,7 @@ void read_constraints(Fields& top, Scene& s) {
     top.fail("constraints", "rigid_body does not apply to a " + s.model.type + " (its boundary holds it)");
   auto constrains = [&](const BoundarySpec& b) {
     for (int a = 0; a < s.dim; ++a)
-      if (b.fix[a] || b.displacement[a]) return true;
+      if (b.fix[a] || b.displacement[a] || b.velocity[a]) return true;
     return false;
   };
   std::vector<const BoundarySpec*> all;
@@ -455,6 +455,7 @@ Scene parse_scene(const std::string& text, const std::string& source,
     top.mark("output");
   }
   read_probes(top.list("probes"), source, s);
+  detail::read_fracture(top, s);
   top.finish();
   refuse_unstable_dynamics(root, s);
   return s;

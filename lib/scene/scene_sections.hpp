@@ -22,6 +22,9 @@ void check_body_formulation(const YAML::Node& root, const Scene& s);
 /// A correspondence model's boundary item after region, fix and displacement: traction,
 /// pressure and `at` (layer | face).
 void read_body_boundary(Fields& f, const Scene& s, BoundarySpec& b);
+/// `damage` and `precracks` (after the model, solver and output), and the checks on prescribed
+/// velocities (scene_fracture.cpp).
+void read_fracture(Fields& top, Scene& s);
 /// `probes`.
 void read_probes(const std::vector<YAML::Node>& items, const std::string& source, Scene& s);
 

@@ -25,7 +25,9 @@ namespace {
 void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
                std::vector<double>& u, std::vector<double>& v, Progress* progress,
                const Observer& observe, const Checkpoints<VerletState>& checkpoints,
-               const VerletState* resume, SolveReport& rep) {
+               const VerletState* resume, const ModelChanges* changes, SolveReport& rep) {
+  if (changes && resume)
+    throw std::invalid_argument("solve_verlet: a run whose model changes (broken bonds) is not resumed from a checkpoint");
   const std::size_t n = model.dofs();
   u.resize(n, 0.0);
   v.resize(n, 0.0);
@@ -43,6 +45,10 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   const int dpp = model.dofs_per_particle();
   const std::size_t supports = loading.support_names.size() * dpp;
   for (const auto& c : loading.reaction_columns(dpp)) rep.history.columns.push_back(c);
+  const std::size_t extra = changes ? 2 : 0;  // broken_bonds, released_energy
+  if (changes) rep.history.columns.insert(rep.history.columns.end(), {"broken_bonds", "released_energy"});
+  std::size_t changed = 0;  // changes made so far
+  double released = 0.0;    // the strain energy they released (J)
   rep.history.reserve(opt.steps / std::max<std::int64_t>(opt.history_every, 1) + 2);
   auto factor = [&](double t) { return opt.ramp_time > 0.0 ? std::min(1.0, t / opt.ramp_time) : 1.0; };
   double work = 0.0;  // external work, trapezoidal in time
@@ -71,15 +77,16 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
       acc[0] += 0.5 * v[k] * v[k] / inv_mass[k];
     })[0];
     const double strain = model.energy(u.data());
-    row.assign({double(step), t, kin, strain, work, kin + strain - work});
-    row.resize(6 + supports);
+    row.assign({double(step), t, kin, strain, work, kin + strain + released - work});
+    row.resize(6 + supports + extra);
     // fint is the force at this state (accelerate ran on it): the supports' static reaction.
     if (supports > 0) loading.reactions(fint.data(), factor(t), dpp, row.data() + 6);
+    if (changes) row[6 + supports] = double(changed), row[7 + supports] = released;
     for (const double x : row)
       if (!std::isfinite(x)) throw diverged(step, "an energy or a reaction");
     if (step == 0) e0 = kin + strain;
     e_max = std::max(e_max, kin + strain), w_max = std::max(w_max, std::abs(work));
-    const double defect = std::abs(kin + strain - e0 - work);
+    const double defect = std::abs(kin + strain + released - e0 - work);
     const double bound = opt.energy_tolerance * std::max(e_max, w_max) + opt.energy_floor;
     if (opt.energy_check && defect > bound) {
       char what[640];
@@ -110,7 +117,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     rep.iterations = resume->step, rep.end_time = t;
     first_step = resume->step + 1;
   } else {
-    loading.impose(factor(t), u.data());
+    loading.impose(factor(t), u.data(), t);
     accelerate(0, t);
     if (moving_galerkin) loading.multipliers(fint.data(), factor(t), lambda_old.data());
     energies(0, t);
@@ -130,7 +137,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     const double t_old = t;
     t += dt;
     try {
-      loading.impose(factor(t), u.data());
+      loading.impose(factor(t), u.data(), t);
       const double s_mid = 0.5 * (factor(t) + factor(t - dt));
       if (fext)
         work += s_mid * parallel_sums<1>(n, [&](std::size_t k, double* acc) { acc[0] += fext[k] * (u[k] - u_old[k]); })[0];
@@ -151,6 +158,13 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
         const double du = u[dof] - u_old[dof];
         if (du != 0.0) work += (0.5 * (fint_fixed[k] + fint[dof]) - (fext ? s_mid * fext[dof] : 0.0)) * du;
       }
+      // Changes at the end of the step: the work above is the force's before them.
+      if (changes && step % changes->every == 0 && changes->find(u.data()) > 0) {
+        const double before = model.energy(u.data());
+        changed += changes->apply();
+        released += before - model.energy(u.data());
+        accelerate(step, t);
+      }
       parallel_for(n, [&](std::size_t k) { v[k] += 0.5 * dt * a[k]; });
       loading.zero_fixed(v.data());
       const bool keep_row = step % opt.history_every == 0;
@@ -169,6 +183,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     if (progress && step % 50 == 0) {
       sample.iteration = step;
       sample.time = t;
+      if (changes) sample.broken = static_cast<std::int64_t>(changed);
       progress->update(sample);
     }
     if (checkpoints.due(step))
@@ -183,10 +198,10 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
 SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptions& opt,
                          std::vector<double>& u, std::vector<double>& v, Progress* progress,
                          const Observer& observe, const Checkpoints<VerletState>& checkpoints,
-                         const VerletState* resume) {
+                         const VerletState* resume, const ModelChanges* changes) {
   SolveReport rep;
   try {
-    integrate(model, loading, opt, u, v, progress, observe, checkpoints, resume, rep);
+    integrate(model, loading, opt, u, v, progress, observe, checkpoints, resume, changes, rep);
   } catch (const DivergenceError& e) {
     if (progress) progress->finish();
     rep.converged = false;

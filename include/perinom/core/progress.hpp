@@ -12,6 +12,7 @@ struct ProgressSample {
   double residual = 0.0;        ///< relative residual (ADR) or 0
   double target = 0.0;          ///< the tolerance the residual must reach (ADR) or 0
   double time = 0.0;            ///< simulated time (Verlet) or 0
+  std::int64_t broken = -1;     ///< bonds broken so far (Verlet with breaking), or -1
 };
 
 /// Receives samples; the command line draws a bar on a terminal, plain lines otherwise.

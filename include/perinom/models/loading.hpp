@@ -20,6 +20,9 @@ namespace perinom {
 struct Loading {
   std::vector<std::int64_t> fixed;  ///< degree-of-freedom indices (i*dofs_per_particle + a)
   std::vector<double> value;        ///< prescribed displacement at full load (m)
+  /// Prescribed velocities (m/s), parallel to `fixed`, or empty: constraint k's target grows
+  /// by rate[k] t with the time t of a dynamic run (Verlet), whatever the load factor.
+  std::vector<double> rate;
   std::vector<double> force;        ///< external force at full load (N), one per dof
   // Couplings of face-located constraints (empty when every constraint is on its particle).
   std::vector<Offset> couplings;    ///< CSR offsets, fixed.size() + 1 entries
@@ -59,17 +62,23 @@ struct Loading {
   bool has_pressure() const { return !pressure_force.empty() || !pressure_force0.empty(); }
   /// |external force at s|.
   double force_norm(double s) const;
-  /// The prescribed value of constraint k at factor s.
-  double target(double s, std::size_t k) const {
-    return (value0.empty() ? 0.0 : value0[k]) + s * value[k];
+  /// The prescribed value of constraint k at factor s (and time t, for velocities).
+  double target(double s, std::size_t k, double t = 0.0) const {
+    return (value0.empty() ? 0.0 : value0[k]) + s * value[k] + (rate.empty() ? 0.0 : rate[k] * t);
+  }
+  bool has_rates() const {
+    for (const double r : rate)
+      if (r != 0.0) return true;
+    return false;
   }
   /// Makes this loading start where the body is: value0 from u (the constrained values, or
   /// their face reconstructions) and force0 from the previous stage's full force (none for
   /// the first stage). Values and forces of this stage then act as increments and totals.
   void begin_stage(const Loading* previous, const double* u);
 
-  /// Adds a constraint, replacing an earlier one on the same dof (and its support).
-  void fix(std::int64_t dof, double v, int support_index = -1);
+  /// Adds a constraint, replacing an earlier one on the same dof (and its support), with a
+  /// prescribed velocity v_rate (m/s) on top of the displacement v.
+  void fix(std::int64_t dof, double v, int support_index = -1, double v_rate = 0.0);
   /// Registers a support by name (returns its index for fix), or finds it if known.
   int add_support(const std::string& name);
   bool has_supports() const { return !support_names.empty(); }
@@ -89,10 +98,10 @@ struct Loading {
   /// Column names in the order of reactions(): "NAME.Rx", "NAME.Ry" (, "NAME.Rz") for dpp 2
   /// or 3, "NAME.R" for one dof per particle (a plate's transverse force).
   std::vector<std::string> reaction_columns(int dpp) const;
-  /// Sets u at the constrained dofs. Face-located constraints use the current neighbour
-  /// values (one Gauss-Seidel sweep; the explicit solvers call it every iteration, so the
-  /// constraints converge with the solve).
-  void impose(double s, double* u) const;
+  /// Sets u at the constrained dofs (at time t for velocities). Face-located constraints use
+  /// the current neighbour values (one Gauss-Seidel sweep; the explicit solvers call it every
+  /// iteration, so the constraints converge with the solve).
+  void impose(double s, double* u, double t = 0.0) const;
   /// Zeros the constrained entries of r (a residual or a velocity).
   void zero_fixed(double* r) const;
   /// The Galerkin reduction of a force (or residual) r onto the free dofs: with the

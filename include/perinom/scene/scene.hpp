@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "perinom/fracture/precrack.hpp"
 #include "perinom/geometry/lattice.hpp"
 #include "perinom/geometry/plate_cloud.hpp"
 #include "perinom/geometry/region.hpp"
@@ -58,6 +59,7 @@ struct BoundarySpec {
   Region region;
   std::array<bool, 3> fix{false, false, false};
   std::array<std::optional<double>, 3> displacement;  ///< m, at full load
+  std::array<std::optional<double>, 3> velocity;      ///< m/s from t = 0 (Verlet, at the particles)
   std::optional<std::array<double, 3>> traction;      ///< Pa, on a side
   std::optional<double> pressure;                     ///< Pa, positive pushes inward
   bool at_face = false;  ///< displacements prescribed at the box face, not at the particles
@@ -95,6 +97,15 @@ struct SolverSpec {
   bool energy_check = VerletOptions{}.energy_check;          ///< Verlet: stop when the energy balance fails
   double energy_tolerance = VerletOptions{}.energy_tolerance;  ///< Verlet: the balance's allowed share of the largest energy or work
   bool allow_unstable = false;    ///< Verlet: run the improved or strong formulation anyway
+};
+
+/// The `damage:` keys (issue 17): which bonds break during a Verlet run (THEORY sec. 10).
+struct DamageSpec {
+  std::string criterion;   ///< instability | stretch | stress
+  double s_max = 0.0;      ///< instability: the largest bond stretch that arms it
+  double s_c = 0.0;        ///< stretch: the critical stretch
+  double f_t = 0.0;        ///< stress: the tensile strength (Pa)
+  std::int64_t every = 1;  ///< look for bonds to break every this many steps
 };
 
 struct ProbeSpec {
@@ -140,6 +151,8 @@ struct Scene {
   SolverSpec solver;
   OutputSpec output;
   std::vector<ProbeSpec> probes;
+  std::optional<DamageSpec> damage;  ///< `damage:`; none: no bond breaks during the run
+  std::vector<Precrack> precracks;   ///< `precracks:`, cut at build time
 
   /// Solved as a quasi-static load path (solvers/load_path.hpp): a plastic material,
   /// stages, or solver.type lbc.

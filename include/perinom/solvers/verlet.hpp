@@ -1,6 +1,7 @@
 #pragma once
 /// @file Velocity Verlet for dynamics (THEORY sec. 8; seed 002 eq. 99-100).
 #include <cstdint>
+#include <functional>
 
 #include "perinom/core/progress.hpp"
 #include "perinom/models/loading.hpp"
@@ -42,6 +43,18 @@ struct VerletState {
   std::vector<double> history;      ///< the history rows so far (History::values)
 };
 
+/// Irreversible changes of the model during a run (bonds that break: fracture/bond_breaking.hpp).
+/// Every `every` steps, after the step's force, find(u) counts those due at u; when any are,
+/// the solver takes the strain energy, apply()s them (returning how many it made), takes the
+/// energy again (the difference is the energy the changes release, a history column, so that
+/// kinetic + strain + released - external work stays at its initial value) and the force
+/// anew. The stable step is not recomputed: dt stays the one the run started with.
+struct ModelChanges {
+  std::function<std::size_t(const double* u)> find;
+  std::function<std::size_t()> apply;
+  std::int64_t every = 1;
+};
+
 /// The stable step 2 / omega_max, with omega_max^2 bounded by max_i sum_j |K_ij| / m_i
 /// (Gershgorin on M^-1 K with the model's exact row sums).
 double stable_time_step(const Model& model);
@@ -57,9 +70,12 @@ double stable_time_step(const Model& model);
 /// `checkpoints` receives the whole state when due; with `resume` (such a state) the
 /// integration continues from it, and ends with the u, v, report and history the
 /// uninterrupted one would.
+/// With `changes` the history gains the columns broken_bonds and released_energy; such a run
+/// is not checkpointed (its changes are not in VerletState: resume is refused).
 SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptions& options,
                          std::vector<double>& u, std::vector<double>& v,
                          Progress* progress = nullptr, const Observer& observe = {},
-                         const Checkpoints<VerletState>& checkpoints = {}, const VerletState* resume = nullptr);
+                         const Checkpoints<VerletState>& checkpoints = {}, const VerletState* resume = nullptr,
+                         const ModelChanges* changes = nullptr);
 
 }  // namespace perinom

@@ -1,0 +1,56 @@
+#pragma once
+/// @file Bond breaking during a run (issue 17, THEORY sec. 10): at a state u of a
+/// correspondence model, the bonds a criterion selects, then broken in the model's graph
+/// (CorrespondenceModel::break_bonds: the touched rows of G and S refreshed, particles whose
+/// family no longer spans R^d detached). Irreversible.
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "perinom/fracture/criteria.hpp"
+#include "perinom/geometry/point_cloud.hpp"
+#include "perinom/models/correspondence.hpp"
+
+namespace perinom {
+
+enum class DamageCriterion {
+  instability,  ///< seed 002 sec. 4: hourglass strain above its value when the largest stretch reached s_max
+  stretch,      ///< bond stretch above s_c
+  stress,       ///< (sigma1_i + sigma1_j) / 2 above f_t (seed 000 eq. 49-51)
+};
+
+/// Reads "instability", "stretch" or "stress"; false for any other name.
+bool parse_damage_criterion(const std::string& name, DamageCriterion& c);
+
+class BondBreaking {
+ public:
+  /// `parameter` is s_max, s_c or f_t (Pa) for the criterion. The model and cloud must outlive
+  /// this object. Throws std::invalid_argument unless parameter > 0.
+  BondBreaking(CorrespondenceModel& model, const PointCloud& cloud, DamageCriterion criterion, double parameter);
+
+  /// The bonds due at u (N x d), kept for apply(); returns how many (a bond found in both
+  /// directions counts twice here, once in apply()).
+  std::size_t find(const double* u);
+  /// Breaks the bonds find() kept; returns the bonds that died (pairs, once each).
+  std::size_t apply();
+
+  /// Bonds broken so far by apply() (pairs).
+  std::size_t broken() const { return broken_; }
+  /// Particles detached so far.
+  std::size_t detached() const { return detached_; }
+  /// The instability criterion's s_hg_max once armed (0 otherwise, and for other criteria).
+  double hourglass_threshold() const { return instability_ ? instability_->threshold() : 0.0; }
+
+ private:
+  CorrespondenceModel* model_;
+  const PointCloud* cloud_;
+  DamageCriterion criterion_;
+  double parameter_;
+  std::optional<InstabilityCriterion> instability_;
+  std::vector<BondPair> due_;
+  std::vector<double> H_, measure_, hourglass_, sigma_, sigma1_;
+  std::size_t broken_ = 0, detached_ = 0;
+};
+
+}  // namespace perinom

@@ -1,0 +1,100 @@
+// The scene's fracture keys (issue 17): `damage` (which bonds break during a Verlet run),
+// `precracks` (bonds cut at build time), and the checks that prescribed velocities need.
+#include <cmath>
+
+#include "perinom/core/error.hpp"
+#include "scene_sections.hpp"
+
+namespace perinom::detail {
+namespace {
+
+double norm(const std::array<double, 3>& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+/// Bonds break in the model's graph and its rows are refreshed: the classical formulation of
+/// a correspondence model. The consistent G~ comes from a global correction (no local
+/// refresh), and the improved and strong formulations' surface band and the consistent
+/// formulation's facets would not follow the crack faces.
+void require_breakable_model(Fields& top, const Scene& s, const std::string& key) {
+  if (s.model.type != "correspondence")
+    top.fail(key, "bonds break in a correspondence model, not in a " + s.model.type);
+  if (s.model.formulation != "classical")
+    top.fail(key, "needs model.formulation classical (here " + s.model.formulation +
+                      "): the consistent formulation's corrected G and the improved and strong formulations' "
+                      "surface terms do not follow new crack faces");
+  if (s.model.operator_order == 2 && s.model.stabilization > 0.0 && s.model.stabilization_storage != "matrix_free")
+    top.fail(key, "with model.operator_order 2 the stabilization must be stored matrix_free to follow broken bonds "
+                  "(model.stabilization_storage: matrix_free)");
+}
+
+Precrack read_precrack(Fields& f, int dim) {
+  Precrack c;
+  if (dim == 2) {
+    const auto from = f.vector("from", 2), to = f.vector("to", 2);
+    c.origin = from;
+    for (int a = 0; a < 2; ++a) c.edge1[a] = to[a] - from[a];
+    if (!(norm(c.edge1) > 0.0)) f.fail("to", "must differ from `from` (a crack of zero length)");
+  } else {
+    c.origin = f.vector("origin", 3);
+    c.edge1 = f.vector("edge1", 3);
+    c.edge2 = f.vector("edge2", 3);
+    const std::array<double, 3>& a = c.edge1;
+    const std::array<double, 3>& b = c.edge2;
+    const std::array<double, 3> n{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    if (!(norm(n) > 1e-12 * norm(a) * norm(b)) || !(norm(a) > 0.0))
+      f.fail("edge2", "the two edges must span a rectangle (nonzero and not parallel)");
+  }
+  f.finish();
+  return c;
+}
+
+}  // namespace
+
+void read_fracture(Fields& top, Scene& s) {
+  if (top.has("damage")) {
+    Fields f = top.map("damage");
+    DamageSpec d;
+    d.criterion = f.text("criterion");
+    if (d.criterion == "instability") {
+      d.s_max = f.number("s_max");
+      if (!(d.s_max > 0.0)) f.fail("s_max", "must be positive");
+    } else if (d.criterion == "stretch") {
+      d.s_c = f.number("s_c");
+      if (!(d.s_c > 0.0)) f.fail("s_c", "must be positive");
+    } else if (d.criterion == "stress") {
+      d.f_t = f.number("f_t");
+      if (!(d.f_t > 0.0)) f.fail("f_t", "must be positive");
+    } else {
+      f.fail("criterion", "must be instability, stretch or stress");
+    }
+    d.every = f.integer("every", 1);
+    if (d.every < 1) f.fail("every", "must be at least 1");
+    f.finish();
+    if (s.solver.type != "verlet") top.fail("damage", "bonds break during a Verlet run (solver.type verlet)");
+    if (s.output.checkpoint_every > 0)
+      top.fail("damage", "runs with breaking bonds are not checkpointed yet (the broken bonds are not in "
+                         "checkpoint.bin); remove output.checkpoint_every");
+    require_breakable_model(top, s, "damage");
+    s.damage = d;
+  }
+  const std::vector<YAML::Node> cracks = top.list("precracks");
+  for (std::size_t k = 0; k < cracks.size(); ++k) {
+    Fields f(cracks[k], "precracks[" + std::to_string(k) + "]", s.source);
+    s.precracks.push_back(read_precrack(f, s.dim));
+  }
+  if (!cracks.empty()) require_breakable_model(top, s, "precracks");
+  for (const BoundarySpec& b : s.boundary)
+    for (int a = 0; a < s.dim; ++a) {
+      if (!b.velocity[a]) continue;
+      if (s.solver.type != "verlet")
+        throw InputError(b.where + ".velocity: a prescribed velocity needs solver.type verlet");
+      if (b.at_face) throw InputError(b.where + ".velocity: is prescribed at the particles (at: layer), not at a face");
+      if (s.model.type != "correspondence")
+        throw InputError(b.where + ".velocity: is for a correspondence model");
+    }
+  for (const StageSpec& st : s.stages)
+    for (const BoundarySpec& b : st.boundary)
+      for (int a = 0; a < s.dim; ++a)
+        if (b.velocity[a]) throw InputError(b.where + ".velocity: load stages are quasi-static; velocities need Verlet");
+}
+
+}  // namespace perinom::detail

@@ -1,0 +1,87 @@
+// The fracture keys (damage, precracks, velocity) on bad input: exit code 2 and one line that
+// names the key, as for every other key (test_bad_input.cpp); and a valid fracture scene.
+#include "../support/cli.hpp"
+
+using namespace cli_test;
+
+namespace {
+
+// The tiny scene as a fracture run: classical formulation, Verlet, the top pulled at 1 m/s, a
+// precrack from the left edge to the centre between two particle rows.
+std::string fracture_scene() {
+  return with(with(tiny_scene, "  - region: top\n    pressure: 1.0e6\n", "  - region: top\n    velocity: {y: 1.0}\n"),
+         "solver:\n  type: adr\n  tolerance: 1.0e-6\n  displacement_tolerance: 1.0e-6\n",
+         "model: {formulation: classical}\nsolver: {type: verlet, steps: 20}\n"
+         "damage: {criterion: instability, s_max: 0.02}\n"
+         "precracks:\n  - {from: [-0.0005, 0.005], to: [0.005, 0.005]}\n");
+}
+
+}  // namespace
+
+TEST_CASE("the fracture scene used below is valid and runs", "[cli][fracture]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << fracture_scene();
+  const Outcome o = perinom(dir, "run scene.yaml --out out");
+  INFO("stdout: " << o.out << "\nstderr: " << o.err);
+  CHECK(o.exit_code == 0);
+  std::ifstream history(dir.path / "out" / "history.csv");
+  std::string header;
+  std::getline(history, header);
+  CHECK(header.find("broken_bonds,released_energy") != std::string::npos);
+}
+
+TEST_CASE("a damage criterion and its parameter are checked by key", "[cli][fracture]") {
+  SECTION("unknown criterion") {
+    const std::string s = with(fracture_scene(), "criterion: instability", "criterion: brittle");
+    require_rejected(s, {"damage.criterion: must be instability, stretch or stress"});
+  }
+  SECTION("s_max not positive") {
+    const std::string s = with(fracture_scene(), "s_max: 0.02", "s_max: 0");
+    require_rejected(s, {"damage.s_max: must be positive"});
+  }
+  SECTION("the stretch criterion needs s_c") {
+    const std::string s = with(fracture_scene(), "criterion: instability, s_max: 0.02", "criterion: stretch");
+    require_rejected(s, {"damage.s_c: required key is missing"});
+  }
+  SECTION("every below 1") {
+    const std::string s = with(fracture_scene(), "s_max: 0.02}", "s_max: 0.02, every: 0}");
+    require_rejected(s, {"damage.every: must be at least 1"});
+  }
+}
+
+TEST_CASE("damage needs Verlet, the classical formulation and no checkpoints", "[cli][fracture]") {
+  SECTION("a static solver") {
+    const std::string s = with(with(fracture_scene(), "type: verlet, steps: 20", "type: adr"), "velocity: {y: 1.0}",
+                               "displacement: {y: 1.0e-5}");
+    require_rejected(s, {"damage: bonds break during a Verlet run (solver.type verlet)"});
+  }
+  SECTION("the consistent formulation") {
+    const std::string s = with(fracture_scene(), "formulation: classical", "formulation: consistent");
+    require_rejected(s, {"damage: needs model.formulation classical (here consistent)"});
+  }
+  SECTION("checkpoints") {
+    const std::string s = fracture_scene() + "output: {checkpoint_every: 10}\n";
+    require_rejected(s, {"damage: runs with breaking bonds are not checkpointed yet"});
+  }
+}
+
+TEST_CASE("a precrack of zero length and a velocity off Verlet or at a face are refused by key", "[cli][fracture]") {
+  SECTION("zero length") {
+    const std::string s = with(fracture_scene(), "to: [0.005, 0.005]", "to: [-0.0005, 0.005]");
+    require_rejected(s, {"precracks[0].to: must differ from `from`"});
+  }
+  SECTION("velocity with ADR") {
+    const std::string s = with(with(with(fracture_scene(), "type: verlet, steps: 20", "type: adr"),
+                                    "damage: {criterion: instability, s_max: 0.02}\n", ""),
+                               "precracks:\n  - {from: [-0.0005, 0.005], to: [0.005, 0.005]}\n", "");
+    require_rejected(s, {"boundary[1].velocity: a prescribed velocity needs solver.type verlet"});
+  }
+  SECTION("velocity at a face") {
+    const std::string s = with(fracture_scene(), "    velocity: {y: 1.0}\n", "    velocity: {y: 1.0}\n    at: face\n");
+    require_rejected(s, {"boundary[1].velocity: is prescribed at the particles"});
+  }
+  SECTION("velocity and displacement on one component") {
+    const std::string s = with(fracture_scene(), "    velocity: {y: 1.0}\n", "    velocity: {y: 1.0}\n    displacement: {y: 0.0}\n");
+    require_rejected(s, {"boundary[1].velocity: prescribes the same component as displacement"});
+  }
+}
