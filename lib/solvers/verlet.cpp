@@ -158,15 +158,18 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
         const double du = u[dof] - u_old[dof];
         if (du != 0.0) work += (0.5 * (fint_fixed[k] + fint[dof]) - (fext ? s_mid * fext[dof] : 0.0)) * du;
       }
-      // Changes at the end of the step: the work above is the force's before them.
+      parallel_for(n, [&](std::size_t k) { v[k] += 0.5 * dt * a[k]; });
+      loading.zero_fixed(v.data());
+      // Changes after the step, at its end state (u, v): the step itself ran on the model
+      // before them (the work above and the kick are its force's), the next one runs on the
+      // changed model from the force taken anew. So each step is an exact Verlet step of one
+      // model, and the balance loses only the strain energy the changes release.
       if (changes && step % changes->every == 0 && changes->find(u.data()) > 0) {
         const double before = model.energy(u.data());
         changed += changes->apply();
         released += before - model.energy(u.data());
         accelerate(step, t);
       }
-      parallel_for(n, [&](std::size_t k) { v[k] += 0.5 * dt * a[k]; });
-      loading.zero_fixed(v.data());
       const bool keep_row = step % opt.history_every == 0;
       if (keep_row) energies(step, t);
       observe(step, t, u);  // part 3: the snapshot writer refuses a non-finite field

@@ -46,12 +46,15 @@ TEST_CASE("SENT (coarse): the precrack cuts the notch and the crack crosses to t
   REQUIRE(r.converged);
   const auto d = field(p.physics().output_fields(u.data(), false, false), "damage");
   // The two rows next to mid-height are damaged all along the right half; rows more than
-  // four spacings away are intact.
+  // four spacings away are intact, but for the two rows at the held and the pulled edge,
+  // where a few bonds at the right corners break after the halves separate (d = 0.1 at five
+  // particles each at this resolution).
   for (std::size_t i = 0; i < n; ++i) {
     const double x = p.cloud.x[i * 2], y = p.cloud.x[i * 2 + 1];
     INFO("particle " << i << " at (" << x << ", " << y << ")");
     if (std::abs(y - mid) < dx) CHECK(d[i] > 0.2);
-    if (std::abs(y - mid) > 4 * dx) CHECK(d[i] < 0.05);
+    const bool edge_row = y < 2 * dx || y > 1e-3 - 2 * dx;
+    if (std::abs(y - mid) > 4 * dx) CHECK(d[i] < (edge_row ? 0.2 : 0.05));
   }
   // The history: bonds broke, and kinetic + strain + released - work stays near zero.
   const auto& h = r.history;
@@ -61,5 +64,5 @@ TEST_CASE("SENT (coarse): the precrack cuts the notch and the crack crosses to t
   CHECK(last[cols - 2] > 100.0);
   const double work = last[4], balance = last[5];
   INFO("energy balance " << balance << " J of " << work << " J of external work");
-  CHECK(std::abs(balance) < 0.1 * work);
+  CHECK(std::abs(balance) < 0.01 * work);
 }

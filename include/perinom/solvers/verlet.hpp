@@ -44,11 +44,12 @@ struct VerletState {
 };
 
 /// Irreversible changes of the model during a run (bonds that break: fracture/bond_breaking.hpp).
-/// Every `every` steps, after the step's force, find(u) counts those due at u; when any are,
-/// the solver takes the strain energy, apply()s them (returning how many it made), takes the
-/// energy again (the difference is the energy the changes release, a history column, so that
-/// kinetic + strain + released - external work stays at its initial value) and the force
-/// anew. The stable step is not recomputed: dt stays the one the run started with.
+/// Every `every` steps, at the end of the step (u and v updated on the model as it was),
+/// find(u) counts those due at u; when any are, the solver takes the strain energy, apply()s
+/// them (returning how many it made), takes the energy again (the difference is the energy
+/// the changes release, a history column, so that kinetic + strain + released - external
+/// work stays at its initial value) and the force anew, which the next step starts from. The
+/// stable step is not recomputed: dt stays the one the run started with.
 struct ModelChanges {
   std::function<std::size_t(const double* u)> find;
   std::function<std::size_t()> apply;
