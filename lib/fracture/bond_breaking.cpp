@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "bond_selection.hpp"
 #include "perinom/fracture/bond_measures.hpp"
 #include "perinom/materials/measures.hpp"
 
@@ -23,26 +24,39 @@ BondBreaking::BondBreaking(CorrespondenceModel& model, const PointCloud& cloud, 
 }
 
 std::size_t BondBreaking::find(const double* u) {
+  using detail::live_bonds_above;
+  using detail::live_maximum;
   const BondGraph& g = model_->G().graph();
+  const int d = cloud_->dim;
+  const BondStretch stretch{d, cloud_->x.data(), u};
+  due_.clear();
   switch (criterion_) {
-    case DamageCriterion::instability:
-      bond_stretches(*cloud_, g, u, measure_);
-      H_.resize(cloud_->size() * cloud_->dim * cloud_->dim);
-      model_->gradient(u, H_.data());
-      hourglass_strains(*cloud_, g, u, H_.data(), hourglass_);
-      due_ = instability_->select(g, measure_, hourglass_);
+    case DamageCriterion::instability: {
+      // One pass a step: the largest stretch until armed (and at that step the largest
+      // hourglass strain, once; none exceeds it then), afterwards the hourglass strains.
+      auto hourglass = [&] {
+        H_.resize(cloud_->size() * d * d);
+        model_->gradient(u, H_.data());
+        return HourglassStrain{d, cloud_->x.data(), u, H_.data()};
+      };
+      if (!instability_->armed()) {
+        instability_->arm(live_maximum(g, stretch), [&] { return live_maximum(g, hourglass()); });
+        break;
+      }
+      due_ = live_bonds_above(g, instability_->threshold(), hourglass());
       break;
+    }
     case DamageCriterion::stretch:
-      bond_stretches(*cloud_, g, u, measure_);
-      due_ = bonds_above(g, measure_, parameter_);
+      due_ = live_bonds_above(g, parameter_, stretch);
       break;
-    case DamageCriterion::stress:
+    case DamageCriterion::stress: {
       model_->stress3(u, sigma_);
       sigma1_.resize(cloud_->size());
       for (std::size_t i = 0; i < sigma1_.size(); ++i) sigma1_[i] = max_principal_stress(sigma_.data() + i * 9);
-      bond_stresses(g, sigma1_, measure_);
-      due_ = bonds_above(g, measure_, parameter_);
+      const double* s1 = sigma1_.data();
+      due_ = live_bonds_above(g, parameter_, [s1](std::size_t i, std::size_t j) { return 0.5 * (s1[i] + s1[j]); });
       break;
+    }
   }
   return due_.size();
 }

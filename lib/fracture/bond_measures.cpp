@@ -1,6 +1,5 @@
 #include "perinom/fracture/bond_measures.hpp"
 
-#include <cmath>
 
 namespace perinom {
 namespace {
@@ -20,33 +19,11 @@ void per_live_bond(const BondGraph& g, std::vector<double>& s, Value&& value) {
 
 void hourglass_strains(const PointCloud& cloud, const BondGraph& graph, const double* u, const double* H,
                        std::vector<double>& s) {
-  const int d = cloud.dim;
-  const double* x = cloud.x.data();
-  per_live_bond(graph, s, [&](std::size_t i, std::size_t j) {
-    double xi[3], z2 = 0.0, l2 = 0.0;
-    for (int b = 0; b < d; ++b) xi[b] = x[j * d + b] - x[i * d + b], l2 += xi[b] * xi[b];
-    for (int a = 0; a < d; ++a) {
-      double z = u[j * d + a] - u[i * d + a];
-      for (int b = 0; b < d; ++b) z -= H[(i * d + a) * d + b] * xi[b];
-      z2 += z * z;
-    }
-    return std::sqrt(z2 / l2);
-  });
+  per_live_bond(graph, s, HourglassStrain{cloud.dim, cloud.x.data(), u, H});
 }
 
 void bond_stretches(const PointCloud& cloud, const BondGraph& graph, const double* u, std::vector<double>& s) {
-  const int d = cloud.dim;
-  const double* x = cloud.x.data();
-  per_live_bond(graph, s, [&](std::size_t i, std::size_t j) {
-    double l2 = 0.0, y2 = 0.0;
-    for (int a = 0; a < d; ++a) {
-      const double xi = x[j * d + a] - x[i * d + a];
-      const double y = xi + u[j * d + a] - u[i * d + a];
-      l2 += xi * xi, y2 += y * y;
-    }
-    const double l = std::sqrt(l2);
-    return (std::sqrt(y2) - l) / l;
-  });
+  per_live_bond(graph, s, BondStretch{cloud.dim, cloud.x.data(), u});
 }
 
 void bond_stresses(const BondGraph& graph, const std::vector<double>& sigma1, std::vector<double>& t) {

@@ -32,13 +32,17 @@ InstabilityCriterion::InstabilityCriterion(double s_max) : s_max_(s_max) {
   if (!(s_max > 0.0)) throw std::invalid_argument("InstabilityCriterion: s_max must be positive");
 }
 
+bool InstabilityCriterion::arm(double max_stretch, const std::function<double()>& max_hourglass) {
+  if (!armed_ && max_stretch >= s_max_) {
+    armed_ = true;
+    s_hg_max_ = max_hourglass();
+  }
+  return armed_;
+}
+
 std::vector<BondPair> InstabilityCriterion::select(const BondGraph& g, const std::vector<double>& stretch,
                                                    const std::vector<double>& hourglass) {
-  if (!armed_) {
-    if (live_max(g, stretch) < s_max_) return {};
-    armed_ = true;
-    s_hg_max_ = live_max(g, hourglass);
-  }
+  if (!arm(live_max(g, stretch), [&] { return live_max(g, hourglass); })) return {};
   return bonds_above(g, hourglass, s_hg_max_);
 }
 

@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <omp.h>
+
+#include "../../lib/fracture/bond_selection.hpp"
 #include "../support/clouds.hpp"
 #include "perinom/fracture/bond_measures.hpp"
 #include "perinom/fracture/criteria.hpp"
@@ -123,4 +126,25 @@ TEST_CASE("criteria break strictly above their thresholds, and the instability c
   hg[2] = 1.0;
   for (const auto& [i, j] : crit.select(g, stretch, hg)) CHECK(g.alive(g.find(i, j)));
   CHECK_THROWS_AS(InstabilityCriterion(0.0), std::invalid_argument);
+}
+
+TEST_CASE("the one-pass bond selection equals the per-bond arrays and does not depend on the thread count", "[fracture]") {
+  // What BondBreaking runs each step (lib/fracture/bond_selection.hpp) against the array form.
+  const PointCloud c = test::lattice(2, 60, 0.3);
+  BondGraph g(radius_families(c, 3.015));
+  g.break_bond(0, g.col(g.begin(0)));  // a dead bond is never selected
+  const auto u = test::random_field(c.size() * 2, 1e-2, 5);
+  const BondStretch stretch{2, c.x.data(), u.data()};
+  std::vector<double> s;
+  bond_stretches(c, g, u.data(), s);
+  const double threshold = 0.5 * *std::max_element(s.begin(), s.end());
+  const auto expected = bonds_above(g, s, threshold);
+  REQUIRE(expected.size() > 10);
+  const int before = omp_get_max_threads();
+  for (const int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    CHECK(detail::live_bonds_above(g, threshold, stretch) == expected);
+    CHECK(detail::live_maximum(g, stretch) == *std::max_element(s.begin(), s.end()));
+  }
+  omp_set_num_threads(before);
 }

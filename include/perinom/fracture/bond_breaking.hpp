@@ -49,7 +49,7 @@ class BondBreaking {
   double parameter_;
   std::optional<InstabilityCriterion> instability_;
   std::vector<BondPair> due_;
-  std::vector<double> H_, measure_, hourglass_, sigma_, sigma1_;
+  std::vector<double> H_, sigma_, sigma1_;  // workspaces: grad u, stresses, sigma1
   std::size_t broken_ = 0, detached_ = 0;
 };
 

@@ -1,12 +1,48 @@
 #pragma once
 /// @file What the fracture criteria measure on each bond of the graph (THEORY sec. 10): one
 /// value per bond slot in row order, 0 for a dead bond; and the damage of each particle.
+#include <cmath>
 #include <vector>
 
 #include "perinom/geometry/point_cloud.hpp"
 #include "perinom/neighbors/bond_graph.hpp"
 
 namespace perinom {
+
+/// The stretch (|xi + eta| - |xi|) / |xi| of bond (i, j), eta = u_j - u_i.
+struct BondStretch {
+  int d;
+  const double* x;  ///< positions, N x d
+  const double* u;  ///< displacements, N x d
+  double operator()(std::size_t i, std::size_t j) const {
+    double l2 = 0.0, y2 = 0.0;
+    for (int a = 0; a < d; ++a) {
+      const double xi = x[j * d + a] - x[i * d + a];
+      const double y = xi + u[j * d + a] - u[i * d + a];
+      l2 += xi * xi, y2 += y * y;
+    }
+    const double l = std::sqrt(l2);
+    return (std::sqrt(y2) - l) / l;
+  }
+};
+
+/// The hourglass strain |z_ij| / |xi_ij| of bond (i, j), z_ij = u_j - u_i - H_i xi_ij.
+struct HourglassStrain {
+  int d;
+  const double* x;  ///< positions, N x d
+  const double* u;  ///< displacements, N x d
+  const double* H;  ///< grad u, N x d x d
+  double operator()(std::size_t i, std::size_t j) const {
+    double xi[3], z2 = 0.0, l2 = 0.0;
+    for (int b = 0; b < d; ++b) xi[b] = x[j * d + b] - x[i * d + b], l2 += xi[b] * xi[b];
+    for (int a = 0; a < d; ++a) {
+      double z = u[j * d + a] - u[i * d + a];
+      for (int b = 0; b < d; ++b) z -= H[(i * d + a) * d + b] * xi[b];
+      z2 += z * z;
+    }
+    return std::sqrt(z2 / l2);
+  }
+};
 
 /// The hourglass strain |z_ij| / |xi_ij| of every live bond (i, j), z_ij = u_j - u_i -
 /// H_i xi_ij, xi_ij = x_j - x_i, for u (N x d) and H = grad u (N x d x d, from the model's G):

@@ -1,6 +1,7 @@
 #pragma once
 /// @file Which bonds break (THEORY sec. 10), from a per-bond measure (bond_measures.hpp).
 /// Breaking is irreversible: dead bonds are never selected again.
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -27,6 +28,10 @@ class InstabilityCriterion {
   /// The bonds to break for the current stretches and hourglass strains (per bond slot).
   std::vector<BondPair> select(const BondGraph& graph, const std::vector<double>& stretch,
                                const std::vector<double>& hourglass);
+  /// The state change alone: arms when max_stretch (the largest live stretch) reaches s_max,
+  /// fixing s_hg_max = max_hourglass() (called then only); returns armed(). A caller that
+  /// selects the bonds itself (BondBreaking, one pass per step) uses this and threshold().
+  bool arm(double max_stretch, const std::function<double()>& max_hourglass);
   bool armed() const { return armed_; }
   /// s_hg_max once armed (0 before).
   double threshold() const { return s_hg_max_; }

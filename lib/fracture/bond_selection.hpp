@@ -1,0 +1,48 @@
+#pragma once
+// Bond selection in one parallel pass over the live bonds, for the fracture criteria (internal
+// to lib/fracture): no per-bond array, the same result for any thread count.
+#include <omp.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "perinom/fracture/criteria.hpp"
+
+namespace perinom::detail {
+
+/// The largest value(i, j) over the live bonds (0 with none); rows in parallel, the same
+/// result for any thread count (a maximum does not depend on the order).
+template <class Value>
+double live_maximum(const BondGraph& g, const Value& value) {
+  double top = 0.0;
+  const std::size_t n = g.rows();
+#pragma omp parallel for schedule(static) reduction(max : top)
+  for (std::size_t i = 0; i < n; ++i)
+    for (Offset k = g.begin(i); k < g.end(i); ++k)
+      if (g.alive(k)) top = std::max(top, value(i, static_cast<std::size_t>(g.col(k))));
+  return top;
+}
+
+/// The live bonds (i, j) with value(i, j) > threshold, in row order whatever the thread count
+/// (each thread takes a contiguous block of rows; the blocks are joined in order). One pass,
+/// no per-bond array: what a criterion costs per step.
+template <class Value>
+std::vector<BondPair> live_bonds_above(const BondGraph& g, double threshold, const Value& value) {
+  std::vector<std::vector<BondPair>> found;
+#pragma omp parallel
+  {
+#pragma omp single
+    found.resize(static_cast<std::size_t>(omp_get_num_threads()));
+    std::vector<BondPair>& mine = found[static_cast<std::size_t>(omp_get_thread_num())];
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < g.rows(); ++i)
+      for (Offset k = g.begin(i); k < g.end(i); ++k)
+        if (g.alive(k) && value(i, static_cast<std::size_t>(g.col(k))) > threshold)
+          mine.emplace_back(static_cast<ParticleId>(i), g.col(k));
+  }
+  std::vector<BondPair> out;
+  for (auto& f : found) out.insert(out.end(), f.begin(), f.end());
+  return out;
+}
+
+}  // namespace perinom::detail
