@@ -58,6 +58,7 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
       volume_(cloud.volume),
       law_(std::move(law)) {
   c_hg_ = options.stabilization;
+  fracture_fields_ = options.fracture_fields;
   x_ = cloud.x;
   const bool consistent = formulation_ == Formulation::consistent;
   if (consistent && facets.empty())

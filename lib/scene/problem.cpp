@@ -177,6 +177,7 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   opt.plasticity = s.plasticity;
   if (s.model.kinematics == "finite_rotation") opt.kinematics = Kinematics::finite_rotation;
   opt.follower_pressure = s.model.follower_pressure;
+  opt.fracture_fields = s.damage.has_value() || !s.precracks.empty();
   Surface surface;
   BoundaryFacets facets;
   if (s.body_files.given()) {

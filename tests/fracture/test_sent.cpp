@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "perinom/materials/measures.hpp"
 #include "perinom/scene/problem.hpp"
 #include "perinom/scene/registry.hpp"
 #include "perinom/scene/scene.hpp"
@@ -44,7 +45,12 @@ TEST_CASE("SENT (coarse): the precrack cuts the notch and the crack crosses to t
   const SolveReport r = solve_problem(p, u);
   INFO(r.failure);
   REQUIRE(r.converged);
-  const auto d = field(p.physics().output_fields(u.data(), false, false), "damage");
+  const auto fields = p.physics().output_fields(u.data(), false, false);
+  const auto d = field(fields, "damage");
+  // The stress criterion's field is the largest principal stress of the stress field.
+  const auto& sigma = field(fields, "stress");
+  const auto& sigma1 = field(fields, "max_principal_stress");
+  for (std::size_t i = 0; i < n; i += 37) CHECK(sigma1[i] == max_principal_stress(sigma.data() + i * 9));
   // The two rows next to mid-height are damaged all along the right half; rows more than
   // four spacings away are intact, but for the two rows at the held and the pulled edge,
   // where a few bonds at the right corners break after the halves separate (d = 0.1 at five

@@ -74,6 +74,9 @@ struct CorrespondenceOptions {
   Kinematics kinematics = Kinematics::small_strain;
   /// Pressures follow the deformed surface (follower_pressure.hpp); finite_rotation only.
   bool follower_pressure = false;
+  /// Output fields of a run with cracks from its start: damage and max_principal_stress
+  /// (otherwise damage appears once a bond is broken).
+  bool fracture_fields = false;
 };
 
 /// What CorrespondenceModel::break_bonds did.
@@ -188,6 +191,7 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
 
  private:
   double c_hg_ = 0.0;       // the stabilization coefficient asked for (for the plan)
+  bool fracture_fields_ = false;  // CorrespondenceOptions::fracture_fields
   std::vector<double> x_;   // the particles' positions (surface stress at the facets)
   int dim_;
   int order_;
