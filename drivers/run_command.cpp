@@ -223,6 +223,23 @@ int run(const Options& opt) {
     solver["stable_time_step"] = rep.stable_time_step;
     solver["end_time"] = rep.end_time;
   }
+  if (scene.damage && rep.iterations > 0) {
+    // The cost of breaking: a step that looks (find) and one that breaks, against an intact
+    // step (the rest of the loop), in seconds and as ratios.
+    const auto& c = rep.changes;
+    const double steps = double(rep.iterations);
+    const double intact = (c.loop_seconds - c.find_seconds - c.change_seconds) / steps;
+    const double find = c.find_seconds / steps;
+    const double change = c.changing_steps > 0 ? c.change_seconds / double(c.changing_steps) : 0.0;
+    Json f = Json::object();
+    f["breaking_steps"] = static_cast<long long>(c.changing_steps);
+    f["intact_step_seconds"] = intact;
+    f["find_seconds_per_step"] = find;
+    f["break_seconds_per_breaking_step"] = change;
+    f["looking_step_ratio"] = intact > 0.0 ? (intact + find) / intact : 0.0;
+    f["breaking_step_ratio"] = intact > 0.0 ? (intact + find + change) / intact : 0.0;
+    solver["fracture"] = f;
+  }
   if (rep.diverged) {
     solver["diverged_at"] = static_cast<long long>(rep.diverged_at);
     solver["last_good"] = static_cast<long long>(scene.load_path() ? steps_done : rep.iterations);

@@ -8,6 +8,7 @@
 
 #include "perinom/core/error.hpp"
 #include "perinom/core/thread_governor.hpp"
+#include "perinom/core/timer.hpp"
 #include "perinom/solvers/vector_ops.hpp"
 
 namespace perinom {
@@ -126,6 +127,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   ProgressSample sample;
   sample.limit = opt.steps;
   ThreadGovernor governor;
+  const double loop_start = wall_seconds();
   for (std::int64_t step = first_step; step <= opt.steps; ++step) {
     governor.tick();
     parallel_for(n, [&](std::size_t k) {
@@ -164,11 +166,19 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
       // before them (the work above and the kick are its force's), the next one runs on the
       // changed model from the force taken anew. So each step is an exact Verlet step of one
       // model, and the balance loses only the strain energy the changes release.
-      if (changes && step % changes->every == 0 && changes->find(u.data()) > 0) {
-        const double before = model.energy(u.data());
-        changed += changes->apply();
-        released += before - model.energy(u.data());
-        accelerate(step, t);
+      if (changes && step % changes->every == 0) {
+        const double t0 = wall_seconds();
+        const bool due = changes->find(u.data()) > 0;
+        const double t1 = wall_seconds();
+        rep.changes.find_seconds += t1 - t0;
+        if (due) {
+          const double before = model.energy(u.data());
+          changed += changes->apply();
+          released += before - model.energy(u.data());
+          accelerate(step, t);
+          rep.changes.change_seconds += wall_seconds() - t1;
+          ++rep.changes.changing_steps;
+        }
       }
       const bool keep_row = step % opt.history_every == 0;
       if (keep_row) energies(step, t);
@@ -193,6 +203,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
       checkpoints.call(VerletState{step, t, dt, work, e0, e_max, w_max, u, v, a, fint, lambda_old, rep.history.values});
   }
   rep.converged = true;
+  rep.changes.loop_seconds = wall_seconds() - loop_start;
   if (progress) progress->finish();
 }
 

@@ -33,6 +33,14 @@ struct SolveReport {
   bool diverged = false;
   std::int64_t diverged_at = -1;
   History history;
+  /// Verlet with ModelChanges (breaking bonds): the wall time of the step loop, the part of it
+  /// spent looking for changes (find), the part spent making them (apply, the two energies
+  /// and the force taken anew), and the steps that made any.
+  struct Changes {
+    std::int64_t changing_steps = 0;
+    double loop_seconds = 0.0, find_seconds = 0.0, change_seconds = 0.0;
+  };
+  Changes changes;
 };
 
 /// What solve_adr carries from one iteration to the next, taken at the end of an iteration:
