@@ -258,6 +258,17 @@ void Stabilization::row(std::size_t r, Add&& add) const {
     const double c = cv_[i] * t_wv_[t];
     p_of(i, r);
     add(static_cast<ParticleId>(r), c);
+    if (nb == d) {
+      // The same entries with w_ir V_r applied to p_ir before the dot products: the rounding
+      // the first-order rows had before the two orders shared this code, kept so that no
+      // first-order answer moved with the merge (ADR's iteration count follows 1e-14 changes).
+      double a[3];
+      for (int q = 0; q < d; ++q) a[q] = t_wv_[t] * p[q];
+      add(i, cv_[i] * (-t_wv_[t] - dot(a, fit_diagonal(i, diagonal), d)));
+      for (Offset k = g.begin(i); k < g.end(i); ++k)
+        if (g.alive(k)) add(g.col(k), -cv_[i] * dot(a, fit_weights(k, weights), d));
+      continue;
+    }
     add(i, -c * (1.0 + dot(p, fit_diagonal(i, diagonal), nb)));
     for (Offset k = g.begin(i); k < g.end(i); ++k)
       if (g.alive(k)) add(g.col(k), -c * dot(p, fit_weights(k, weights), nb));
