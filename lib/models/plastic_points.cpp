@@ -119,35 +119,6 @@ std::size_t PlasticPoints::flag_violations(double tolerance) {
 
 void PlasticPoints::commit() { committed_ = trial_; }
 
-void PlasticPoints::stresses(std::size_t begin, std::size_t end, const double* H, double* P) {
-  const std::size_t d2 = static_cast<std::size_t>(dim_) * dim_;
-  for (std::size_t i = begin; i < end; ++i) stress(i, H + i * d2, P + i * d2);
-}
-
-void PlasticPoints::energies(const double* H, double* psi) {
-  const std::size_t d2 = static_cast<std::size_t>(dim_) * dim_;
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < size(); ++i) {
-    double P[9];
-    stress(i, H + i * d2, P);  // keeps the trial state whose stored energy this is
-    psi[i] = stored_energy(i);
-  }
-}
-
-std::size_t PlasticPoints::tangents(const double* H, std::vector<double>& C) const {
-  const std::size_t d2 = static_cast<std::size_t>(dim_) * dim_, d4 = d2 * d2;
-  C.resize(size() * d4);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < size(); ++i) tangent(i, H + i * d2, C.data() + i * d4);
-  return d4;
-}
-
-void PlasticPoints::cauchy(const double* H, double* sigma) const {
-  const std::size_t d2 = static_cast<std::size_t>(dim_) * dim_;
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < size(); ++i) cauchy(i, H + i * d2, sigma + i * 9);
-}
-
 std::vector<LawField> PlasticPoints::fields() const {
   std::vector<LawField> out{{"stress", 9}};
   for (auto& f : state_fields()) out.push_back(std::move(f));

@@ -19,6 +19,7 @@
 
 #include "perinom/models/incremental_law.hpp"
 #include "perinom/models/model_history.hpp"
+#include "perinom/models/per_particle_law.hpp"
 #include "perinom/models/pointwise_law.hpp"
 
 namespace perinom {
@@ -26,7 +27,7 @@ namespace perinom {
 /// small_strain: the law reads sym(grad u) itself; finite_rotation: FiniteRotationLaw.
 enum class Kinematics { small_strain, finite_rotation };
 
-class FiniteRotationLaw final : public PointwiseLaw, public LawHistory {
+class FiniteRotationLaw final : public PerParticleLaw<FiniteRotationLaw>, public LawHistory {
  public:
   /// Wraps `law` (which must keep a history) for a model in `dim` dimensions; F = I.
   FiniteRotationLaw(std::unique_ptr<IncrementalLaw> law, int dim);
@@ -37,10 +38,7 @@ class FiniteRotationLaw final : public PointwiseLaw, public LawHistory {
   int dim() const override { return dim_; }
   std::size_t size() const override { return law_->size(); }
   bool has_history() const override { return true; }
-  void stresses(std::size_t begin, std::size_t end, const double* H, double* P) override;
-  void energies(const double* H, double* psi) override;
-  std::size_t tangents(const double* H, std::vector<double>& C) const override;
-  void cauchy(const double* H, double* sigma) const override;
+  using PerParticleLaw::cauchy;
   void commit() override;
   LawHistory* history() override { return this; }
   std::size_t memory_bytes() const override;
@@ -54,6 +52,8 @@ class FiniteRotationLaw final : public PointwiseLaw, public LawHistory {
   void tangent(std::size_t i, const double* H, double* C) const;
   /// The 3 x 3 Cauchy stress of the return map at H from the committed state, nothing kept.
   void cauchy(std::size_t i, const double* H, double* sigma) const;
+  /// The wrapped law's stored energy density of the kept trial state (J/m^3).
+  double stored_energy(std::size_t i) const { return law_->stored_energy(i); }
 
   // LawHistory: the wrapped law's, with F after its values.
   void set_history_mode(HistoryMode mode) override { inner_history().set_history_mode(mode); }

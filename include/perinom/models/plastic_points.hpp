@@ -22,13 +22,14 @@
 #include "perinom/materials/drucker_prager.hpp"
 #include "perinom/models/incremental_law.hpp"
 #include "perinom/models/model_history.hpp"
+#include "perinom/models/per_particle_law.hpp"
 #include "perinom/models/pointwise_law.hpp"
 
 namespace perinom {
 
 enum class PlasticMode { lbc, return_map };
 
-class PlasticPoints final : public PointwiseLaw, public IncrementalLaw, public LawHistory {
+class PlasticPoints final : public PerParticleLaw<PlasticPoints>, public IncrementalLaw, public LawHistory {
  public:
   /// One particle's state: the law's state and the total strain it belongs to.
   struct Point {
@@ -45,11 +46,10 @@ class PlasticPoints final : public PointwiseLaw, public IncrementalLaw, public L
   int dim() const override { return dim_; }
   bool has_history() const override { return true; }
 
-  // PointwiseLaw: each particle as stress(), stored_energy(), tangent() and cauchy() below.
-  void stresses(std::size_t begin, std::size_t end, const double* H, double* P) override;
-  void energies(const double* H, double* psi) override;
-  std::size_t tangents(const double* H, std::vector<double>& C) const override;
-  void cauchy(const double* H, double* sigma) const override;
+  // PointwiseLaw: the batch calls (PerParticleLaw) run stress(), stored_energy(), tangent()
+  // and cauchy() below over the particles.
+  using PerParticleLaw::cauchy;
+  using PerParticleLaw::tangents;
   /// "stress"; "eq_plastic_strain" (xi), "plastic_strain" (3 x 3), "yielded" (1 where
   /// xi > 0), "lbc_flagged" (1 where the LBC correction flagged the particle), all committed.
   std::vector<LawField> fields() const override;
