@@ -193,6 +193,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     }
     rep.iterations = step;
     rep.end_time = t;
+    rep.changes.loop_seconds = wall_seconds() - loop_start;  // also right when a later step fails
     if (progress && step % 50 == 0) {
       sample.iteration = step;
       sample.time = t;
@@ -203,7 +204,6 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
       checkpoints.call(VerletState{step, t, dt, work, e0, e_max, w_max, u, v, a, fint, lambda_old, rep.history.values});
   }
   rep.converged = true;
-  rep.changes.loop_seconds = wall_seconds() - loop_start;
   if (progress) progress->finish();
 }
 
