@@ -104,7 +104,8 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   double t = 0.0;
   // Galerkin supports whose targets move (a prescribed displacement): their multipliers.
   const bool moving_galerkin =
-      loading.galerkin() && std::any_of(loading.value.begin(), loading.value.end(), [](double x) { return x != 0.0; });
+      loading.galerkin() &&
+      (loading.has_rates() || std::any_of(loading.value.begin(), loading.value.end(), [](double x) { return x != 0.0; }));
   std::vector<double> lambda(moving_galerkin ? loading.fixed.size() : 0), lambda_old(lambda.size());
   std::int64_t first_step = 1;
   if (resume) {
@@ -152,7 +153,10 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
       if (moving_galerkin) {
         const double ds = factor(t) - factor(t - dt);
         loading.multipliers(fint.data(), factor(t), lambda.data());
-        for (std::size_t k = 0; k < loading.fixed.size(); ++k) work += 0.5 * (lambda_old[k] + lambda[k]) * ds * loading.value[k];
+        for (std::size_t k = 0; k < loading.fixed.size(); ++k) {
+          work += 0.5 * (lambda_old[k] + lambda[k]) * ds * loading.value[k];
+          if (!loading.rate.empty()) work += 0.5 * (lambda_old[k] + lambda[k]) * loading.rate[k] * dt;  // velocities
+        }
         std::swap(lambda, lambda_old);
       }
       for (std::size_t k = 0; k < loading.fixed.size() && !loading.galerkin(); ++k) {
