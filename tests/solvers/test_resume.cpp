@@ -160,3 +160,38 @@ TEST_CASE("a load path resumed after a committed step ends bit for bit as the un
   solve_load_path(p.as<CorrespondenceModel>(), p.stages, opt, u_virgin, nullptr, {}, {}, &virgin);
   CHECK_FALSE(same_bits(u_virgin, u));
 }
+
+TEST_CASE("a finite-rotation load path resumed after a committed step ends bit for bit as the uninterrupted one", "[solvers][checkpoint][load_path]") {
+  // The wrapper law's checkpoint: the Drucker-Prager states and F (FiniteRotationLaw).
+  const std::vector<std::string> set = {"stages.0.steps=2", "stages.1.steps=2", "discretization.dx=0.005",
+                                        "model.kinematics=finite_rotation"};
+  const auto build = [&] { return build_problem(read_scene(PERINOM_SOURCE_DIR "/examples/biaxial_compression.yaml", set)); };
+  LoadPathOptions opt;
+  opt.adr.tolerance = opt.adr.displacement_tolerance = 1e-9;
+  Problem whole_p = build();
+  std::vector<double> u;
+  const SolveReport whole = solve_load_path(whole_p.as<CorrespondenceModel>(), whole_p.stages, opt, u);
+  REQUIRE(whole.converged);
+  std::vector<LoadPathState> states;
+  {
+    Problem p = build();
+    std::vector<double> u_ck;
+    solve_load_path(p.as<CorrespondenceModel>(), p.stages, opt, u_ck, nullptr, {}, keep_all(states, 1));
+  }
+  REQUIRE(states.size() == 4);
+  REQUIRE(whole_p.as<CorrespondenceModel>().history()->values_per_particle() == 37);
+  Problem p = build();
+  std::vector<double> u_resumed;
+  const SolveReport resumed = solve_load_path(p.as<CorrespondenceModel>(), p.stages, opt, u_resumed, nullptr, {}, {}, &states[2]);
+  CHECK(resumed.converged);
+  CHECK(same_bits(u_resumed, u));
+  CHECK(same_bits(without_seconds(resumed.history), without_seconds(whole.history)));
+  // F is part of the state: reset to I, the path ends elsewhere.
+  LoadPathState lost = states[2];
+  for (std::size_t i = 0; i < lost.flags.size(); ++i)
+    for (int k = 0; k < 9; ++k) lost.plastic[i * 37 + 28 + k] = k % 4 == 0 ? 1.0 : 0.0;
+  Problem q = build();
+  std::vector<double> u_lost;
+  solve_load_path(q.as<CorrespondenceModel>(), q.stages, opt, u_lost, nullptr, {}, {}, &lost);
+  CHECK_FALSE(same_bits(u_lost, u));
+}
