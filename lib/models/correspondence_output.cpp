@@ -147,6 +147,14 @@ std::vector<PlanLine> CorrespondenceModel::plan() const {
                   static_cast<std::size_t>(std::count(surface_.on_surface.begin(), surface_.on_surface.end(), 1)));
     lines.push_back({"subregions", buf});
   }
+  if (graph_->broken() > 0) {
+    // Bonds cut before the run (precracks): what the crack removed, and who lost its family.
+    const std::size_t detached = G_.detached().size();
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%zu of %zu bonds broken, %zu particle(s) detached", graph_->broken(),
+                  graph_->bonds(), detached);
+    lines.push_back({"broken bonds", buf});
+  }
   return lines;
 }
 

@@ -28,6 +28,12 @@ TEST_CASE("the fracture scene used below is valid and runs", "[cli][fracture]") 
   std::string header;
   std::getline(history, header);
   CHECK(header.find("broken_bonds,released_energy") != std::string::npos);
+  // perinom check names what the precrack cut (10 particles a side: the two rows next to its
+  // line lose their bonds across it, none loses its family).
+  const Outcome c = perinom(dir, "check scene.yaml");
+  INFO(c.out);
+  CHECK(c.exit_code == 0);
+  CHECK(c.out.find("bonds broken, 0 particle(s) detached") != std::string::npos);
 }
 
 TEST_CASE("a damage criterion and its parameter are checked by key", "[cli][fracture]") {
