@@ -233,6 +233,12 @@ int run(const Options& opt) {
     const double change = c.changing_steps > 0 ? c.change_seconds / double(c.changing_steps) : 0.0;
     Json f = Json::object();
     f["breaking_steps"] = static_cast<long long>(c.changing_steps);
+    f["bonds_broken"] = static_cast<long long>(c.broken);
+    f["detached_particles"] = static_cast<long long>(c.detached);
+    if (c.detached > 0)
+      std::printf("perinom: note: %lld particle(s) lost a family that spans the %s and were detached: they carry no "
+                  "stress and move freely (summary.json solver.fracture.detached_particles)\n",
+                  static_cast<long long>(c.detached), scene.dim == 2 ? "plane" : "space");
     f["intact_step_seconds"] = intact;
     f["find_seconds_per_step"] = find;
     f["break_seconds_per_breaking_step"] = change;

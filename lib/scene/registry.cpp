@@ -107,8 +107,13 @@ std::vector<SolverEntry> make_solvers() {
       changes = {[&breaking](const double* x) { return breaking->find(x); }, [&breaking] { return breaking->apply(); },
                  d->every};
     }
-    return solve_verlet(p.physics(), p.loading, verlet_options(p.scene.solver), u, v, h.progress, h.observe,
-                        h.verlet_checkpoints, h.verlet_resume, breaking ? &changes : nullptr);
+    SolveReport r = solve_verlet(p.physics(), p.loading, verlet_options(p.scene.solver), u, v, h.progress, h.observe,
+                                 h.verlet_checkpoints, h.verlet_resume, breaking ? &changes : nullptr);
+    if (breaking) {
+      r.changes.broken = static_cast<std::int64_t>(breaking->broken());
+      r.changes.detached = static_cast<std::int64_t>(p.as<CorrespondenceModel>().G().detached().size());
+    }
+    return r;
   };
   // Newton's own tolerances: its options struct's defaults, not ADR's.
   SolverSpec newton_defaults = d;

@@ -39,6 +39,8 @@ struct SolveReport {
   struct Changes {
     std::int64_t changing_steps = 0;
     double loop_seconds = 0.0, find_seconds = 0.0, change_seconds = 0.0;
+    std::int64_t broken = 0;    ///< bonds broken during the run (set by whoever breaks them)
+    std::int64_t detached = 0;  ///< particles detached so far, precracks included (likewise)
   };
   Changes changes;
 };
