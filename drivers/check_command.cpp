@@ -70,6 +70,15 @@ int check(const Options& opt) {
     std::printf("  stage %zu         %s: %d load steps, %zu fixed degrees of freedom%s\n", k + 1,
                 p.stages[k].name.c_str(), p.stages[k].steps, p.stages[k].loading.fixed.size(),
                 p.stages[k].loading.force.empty() ? "" : ", external forces");
+  if (const auto& d = p.scene.damage) {
+    if (d->criterion == "instability") std::printf("  damage          instability, s_max = %g\n", d->s_max);
+    if (d->criterion == "stress") std::printf("  damage          stress, f_t = %g Pa\n", d->f_t);
+    if (d->criterion == "stretch" && d->G_c <= 0.0) std::printf("  damage          stretch, s_c = %g\n", d->s_c);
+    if (d->criterion == "stretch" && d->G_c > 0.0)
+      std::printf("  damage          stretch, s_c = %.4g from G_c = %g J/m^2 (bond-based calibration by the bulk "
+                  "modulus, %s influence, delta = %.4g m the median family radius)\n",
+                  d->s_c, d->G_c, influence_name(scene.discretization.weight), d->G_c_delta);
+  }
   std::printf("  solver          %s\n", scene.solver.type.c_str());
   std::printf("  assembled operators and fields:\n");
   std::size_t total = 0;

@@ -232,6 +232,7 @@ int run(const Options& opt) {
     const double find = c.find_seconds / steps;
     const double change = c.changing_steps > 0 ? c.change_seconds / double(c.changing_steps) : 0.0;
     Json f = Json::object();
+    if (scene.damage->criterion == "stretch") f["s_c"] = p.scene.damage->s_c;  // given, or from G_c
     f["breaking_steps"] = static_cast<long long>(c.changing_steps);
     f["bonds_broken"] = static_cast<long long>(c.broken);
     f["detached_particles"] = static_cast<long long>(c.detached);

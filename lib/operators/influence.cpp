@@ -14,6 +14,16 @@ double influence(Influence kind, double r, double delta) {
   return 1.0;
 }
 
+const char* influence_name(Influence kind) {
+  switch (kind) {
+    case Influence::constant: return "constant";
+    case Influence::inverse_distance: return "inverse_distance";
+    case Influence::inverse_square: return "inverse_square";
+    case Influence::gaussian: return "gaussian";
+  }
+  return "?";
+}
+
 bool parse_influence(const std::string& name, Influence& kind) {
   if (name == "constant") kind = Influence::constant;
   else if (name == "inverse_distance") kind = Influence::inverse_distance;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "perinom/core/error.hpp"
+#include "perinom/fracture/critical_stretch.hpp"
 #include "perinom/geometry/boundary_facets.hpp"
 #include "perinom/geometry/mesh_body.hpp"
 #include "perinom/geometry/point_file.hpp"
@@ -90,6 +91,15 @@ void pin_rigid_body(Problem& p, const CorrespondenceModel& model) {
   }
 }
 
+/// damage.G_c: s_c by the bond-based calibration (critical_stretch.hpp) at the median family
+/// radius (the interior's horizon: k-nearest families grow at the surface).
+void derive_critical_stretch(DamageSpec& d, const Scene& s, const Families& families) {
+  std::vector<double> r = families.support;
+  std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
+  d.G_c_delta = r[r.size() / 2];
+  d.s_c = critical_stretch(bond_calibration(s.material, s.discretization.weight, d.G_c_delta, s.geometry.thickness), d.G_c);
+}
+
 }  // namespace
 
 BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud) {
@@ -164,6 +174,7 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   p.mean_size = body.mean_size;
   const Families families = scene_families(s, p.cloud);
   p.bonds = families.bonds();
+  if (p.scene.damage && p.scene.damage->G_c > 0.0) derive_critical_stretch(*p.scene.damage, s, families);
   for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
   if (timer) timer->start("operators");
   CorrespondenceOptions opt;

@@ -58,8 +58,14 @@ void read_fracture(Fields& top, Scene& s) {
       d.s_max = f.number("s_max");
       if (!(d.s_max > 0.0)) f.fail("s_max", "must be positive");
     } else if (d.criterion == "stretch") {
-      d.s_c = f.number("s_c");
-      if (!(d.s_c > 0.0)) f.fail("s_c", "must be positive");
+      if (f.has("s_c") == f.has("G_c")) f.fail("criterion", "stretch needs exactly one of s_c and G_c");
+      if (f.has("s_c")) {
+        d.s_c = f.number("s_c");
+        if (!(d.s_c > 0.0)) f.fail("s_c", "must be positive");
+      } else {
+        d.G_c = f.number("G_c");  // s_c follows from the families (problem.cpp)
+        if (!(d.G_c > 0.0)) f.fail("G_c", "must be positive");
+      }
     } else if (d.criterion == "stress") {
       d.f_t = f.number("f_t");
       if (!(d.f_t > 0.0)) f.fail("f_t", "must be positive");

@@ -36,6 +36,27 @@ TEST_CASE("the fracture scene used below is valid and runs", "[cli][fracture]") 
   CHECK(c.out.find("bonds broken, 0 particle(s) detached") != std::string::npos);
 }
 
+TEST_CASE("the stretch criterion's s_c from G_c is printed by check and written to summary.json", "[cli][fracture]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml")
+      << with(fracture_scene(), "criterion: instability, s_max: 0.02", "criterion: stretch, G_c: 2700.0");
+  const Outcome c = perinom(dir, "check scene.yaml");
+  INFO(c.out << c.err);
+  REQUIRE(c.exit_code == 0);
+  const auto at = c.out.find("damage          stretch, s_c = ");
+  REQUIRE(at != std::string::npos);
+  CHECK(c.out.find("from G_c = 2700 J/m^2 (bond-based calibration by the bulk modulus, inverse_square influence",
+                   at) != std::string::npos);
+  const double s_c = std::stod(c.out.substr(at + 31));
+  const Outcome r = perinom(dir, "run scene.yaml --out out");
+  REQUIRE(r.exit_code == 0);
+  std::ifstream in(dir.path / "out" / "summary.json");
+  const std::string summary((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto k = summary.find("\"s_c\": ");
+  REQUIRE(k != std::string::npos);
+  CHECK(std::stod(summary.substr(k + 7)) == Approx(s_c).epsilon(1e-3));
+}
+
 TEST_CASE("a damage criterion and its parameter are checked by key", "[cli][fracture]") {
   SECTION("unknown criterion") {
     const std::string s = with(fracture_scene(), "criterion: instability", "criterion: brittle");
@@ -45,9 +66,16 @@ TEST_CASE("a damage criterion and its parameter are checked by key", "[cli][frac
     const std::string s = with(fracture_scene(), "s_max: 0.02", "s_max: 0");
     require_rejected(s, {"damage.s_max: must be positive"});
   }
-  SECTION("the stretch criterion needs s_c") {
+  SECTION("the stretch criterion needs one of s_c and G_c") {
     const std::string s = with(fracture_scene(), "criterion: instability, s_max: 0.02", "criterion: stretch");
-    require_rejected(s, {"damage.s_c: required key is missing"});
+    require_rejected(s, {"damage.criterion: stretch needs exactly one of s_c and G_c"});
+    const std::string both = with(fracture_scene(), "criterion: instability, s_max: 0.02",
+                                  "criterion: stretch, s_c: 0.01, G_c: 1000.0");
+    require_rejected(both, {"damage.criterion: stretch needs exactly one of s_c and G_c"});
+  }
+  SECTION("G_c not positive") {
+    const std::string s = with(fracture_scene(), "criterion: instability, s_max: 0.02", "criterion: stretch, G_c: 0");
+    require_rejected(s, {"damage.G_c: must be positive"});
   }
   SECTION("every below 1") {
     const std::string s = with(fracture_scene(), "s_max: 0.02}", "s_max: 0.02, every: 0}");

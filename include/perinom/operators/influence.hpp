@@ -14,5 +14,7 @@ double influence(Influence kind, double r, double delta);
 
 /// Parses "constant", "inverse_distance", "inverse_square", "gaussian"; false if unknown.
 bool parse_influence(const std::string& name, Influence& kind);
+/// The name parse_influence reads.
+const char* influence_name(Influence kind);
 
 }  // namespace perinom

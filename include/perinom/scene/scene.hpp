@@ -103,7 +103,9 @@ struct SolverSpec {
 struct DamageSpec {
   std::string criterion;   ///< instability | stretch | stress
   double s_max = 0.0;      ///< instability: the largest bond stretch that arms it
-  double s_c = 0.0;        ///< stretch: the critical stretch
+  double s_c = 0.0;        ///< stretch: the critical stretch (given, or derived from G_c when the problem is built)
+  double G_c = 0.0;        ///< stretch: the fracture energy (J/m^2) s_c is derived from; 0 when s_c is given
+  double G_c_delta = 0.0;  ///< the horizon the derivation used (m): the median family radius
   double f_t = 0.0;        ///< stress: the tensile strength (Pa)
   std::int64_t every = 1;  ///< look for bonds to break every this many steps
 };
