@@ -1,5 +1,6 @@
 #include "perinom/fracture/bond_breaking.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "bond_selection.hpp"
@@ -21,6 +22,11 @@ BondBreaking::BondBreaking(CorrespondenceModel& model, const PointCloud& cloud, 
     : model_(&model), cloud_(&cloud), criterion_(criterion), parameter_(parameter) {
   if (!(parameter > 0.0)) throw std::invalid_argument("BondBreaking: the criterion's parameter must be positive");
   if (criterion == DamageCriterion::instability) instability_.emplace(parameter);
+}
+
+void BondBreaking::hold(const std::vector<ParticleId>& particles) {
+  held_.resize(cloud_->size(), 0);
+  for (const ParticleId i : particles) held_.at(i) = 1;
 }
 
 std::size_t BondBreaking::find(const double* u) {
@@ -58,6 +64,9 @@ std::size_t BondBreaking::find(const double* u) {
       break;
     }
   }
+  if (!held_.empty())
+    due_.erase(std::remove_if(due_.begin(), due_.end(), [&](const BondPair& b) { return held_[b.first] || held_[b.second]; }),
+               due_.end());
   return due_.size();
 }
 

@@ -14,6 +14,12 @@
 namespace perinom {
 namespace {
 
+// The smallest eigenvalue of a symmetric d x d shape tensor (row-major).
+double smallest_eigenvalue(int d, const double* K) {
+  if (d == 2) return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(Eigen::Map<const Eigen::Matrix2d>(K)).eigenvalues()[0];
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(Eigen::Map<const Eigen::Matrix3d>(K)).eigenvalues()[0];
+}
+
 // The basis of THEORY sec. 6 at a bond: d linear terms, then the d(d+1)/2 quadratic ones in
 // the order (xx/2, xy, xz, yy/2, yz, zz/2).
 void basis(int d, const double* xi, double* p) {
@@ -112,6 +118,7 @@ void NonlocalOperator::allocate() {
   }
   attached_.assign(n, 1);
   if (!x_.empty()) K_.assign(n * dim_ * dim_, 0.0);
+  if (!x_.empty() && order_ == 1) kmin0_.assign(n, 0.0);
 }
 
 bool NonlocalOperator::fit_row(std::size_t i) {
@@ -122,6 +129,9 @@ bool NonlocalOperator::fit_row(std::size_t i) {
                                   wv_.data(), graph_->alive_mask().data(), K, Kinv);
   if (order_ == 2) return fit_second_order(i);
   if (!spans || shape_quality(d, K) < detach_quality) return false;
+  const double kmin = smallest_eigenvalue(d, K);
+  if (kmin0_[i] == 0.0) kmin0_[i] = kmin;  // the first fit: at assembly
+  else if (kmin < detach_share * kmin0_[i]) return false;
   return fit_first_order(i, Kinv);
 }
 

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "perinom/fracture/bond_breaking.hpp"
+#include "perinom/geometry/region.hpp"
 #include "plate_keys.hpp"
 #include "scene_sections.hpp"
 
@@ -104,6 +105,7 @@ std::vector<SolverEntry> make_solvers() {
       parse_damage_criterion(d->criterion, c);
       const double parameter = c == DamageCriterion::instability ? d->s_max : c == DamageCriterion::stretch ? d->s_c : d->f_t;
       breaking.emplace(p.as<CorrespondenceModel>(), p.cloud, c, parameter);
+      for (const Region& zone : d->no_fail) breaking->hold(select(zone, p.scene.geometry, p.cloud));
       changes = {[&breaking](const double* x) { return breaking->find(x); }, [&breaking] { return breaking->apply(); },
                  d->every};
     }

@@ -74,6 +74,13 @@ void read_fracture(Fields& top, Scene& s) {
     }
     d.every = f.integer("every", 1);
     if (d.every < 1) f.fail("every", "must be at least 1");
+    const std::vector<YAML::Node> keep = f.list("no_fail");
+    for (std::size_t k = 0; k < keep.size(); ++k) {
+      Fields item(keep[k], f.key("no_fail") + "[" + std::to_string(k) + "]", s.source);
+      d.no_fail.push_back(read_region(item, s));
+      if (d.no_fail.back().is_group()) item.fail("region", "a no-fail zone is a side, a box or a point, not a group");
+      item.finish();
+    }
     f.finish();
     if (s.solver.type != "verlet") top.fail("damage", "bonds break during a Verlet run (solver.type verlet)");
     if (s.output.checkpoint_every > 0)

@@ -13,8 +13,6 @@ int axis_of(const std::string& c, int dim) {
   return a < dim ? a : -1;
 }
 
-namespace {
-
 Region read_region(Fields& f, const Scene& s) {
   Region r;
   const YAML::Node n = f.node("region");
@@ -64,8 +62,6 @@ Region read_region(Fields& f, const Scene& s) {
   rf.finish();
   return r;
 }
-
-}  // namespace
 
 std::vector<BoundarySpec> read_boundary(const std::vector<YAML::Node>& items, const std::string& source,
                                         const Scene& s, const std::string& key) {

@@ -14,6 +14,8 @@ int axis_of(const std::string& component, int dim);
 /// "stages[1].boundary").
 std::vector<BoundarySpec> read_boundary(const std::vector<YAML::Node>& items, const std::string& source,
                                         const Scene& s, const std::string& key = "boundary");
+/// f's `region` key: a side, all, {box}, {point} or {group} (groups need a body from files).
+Region read_region(Fields& f, const Scene& s);
 /// `stages`: each with its name, steps and boundary list.
 void read_stages(const std::vector<YAML::Node>& items, const std::string& source, Scene& s);
 /// model.type correspondence: its keys (registry.hpp), and what it needs of a body from files.

@@ -52,6 +52,12 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   double released = 0.0;    // the strain energy they released (J)
   rep.history.reserve(opt.steps / std::max<std::int64_t>(opt.history_every, 1) + 2);
   auto factor = [&](double t) { return opt.ramp_time > 0.0 ? std::min(1.0, t / opt.ramp_time) : 1.0; };
+  // Prescribed velocities ramp with the loads: the displacement v tau(t), tau the integral of
+  // factor over [0, t] (t itself without a ramp).
+  auto tau = [&](double t) {
+    const double T = opt.ramp_time;
+    return T > 0.0 ? (t < T ? 0.5 * t * t / T : t - 0.5 * T) : t;
+  };
   double work = 0.0;  // external work, trapezoidal in time
   auto diverged = [&](std::int64_t step, const std::string& what) {
     return DivergenceError("Verlet: " + what + " became NaN or Inf at step " + std::to_string(step), step);
@@ -119,7 +125,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     rep.iterations = resume->step, rep.end_time = t;
     first_step = resume->step + 1;
   } else {
-    loading.impose(factor(t), u.data(), t);
+    loading.impose(factor(t), u.data(), tau(t));
     accelerate(0, t);
     if (moving_galerkin) loading.multipliers(fint.data(), factor(t), lambda_old.data());
     energies(0, t);
@@ -140,7 +146,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     const double t_old = t;
     t += dt;
     try {
-      loading.impose(factor(t), u.data(), t);
+      loading.impose(factor(t), u.data(), tau(t));
       const double s_mid = 0.5 * (factor(t) + factor(t - dt));
       if (fext)
         work += s_mid * parallel_sums<1>(n, [&](std::size_t k, double* acc) { acc[0] += fext[k] * (u[k] - u_old[k]); })[0];
@@ -155,7 +161,8 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
         loading.multipliers(fint.data(), factor(t), lambda.data());
         for (std::size_t k = 0; k < loading.fixed.size(); ++k) {
           work += 0.5 * (lambda_old[k] + lambda[k]) * ds * loading.value[k];
-          if (!loading.rate.empty()) work += 0.5 * (lambda_old[k] + lambda[k]) * loading.rate[k] * dt;  // velocities
+          if (!loading.rate.empty())  // velocities
+            work += 0.5 * (lambda_old[k] + lambda[k]) * loading.rate[k] * (tau(t) - tau(t - dt));
         }
         std::swap(lambda, lambda_old);
       }

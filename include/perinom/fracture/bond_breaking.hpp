@@ -29,6 +29,10 @@ class BondBreaking {
   /// this object. Throws std::invalid_argument unless parameter > 0.
   BondBreaking(CorrespondenceModel& model, const PointCloud& cloud, DamageCriterion criterion, double parameter);
 
+  /// A no-fail zone (the peers' device at grips and impact points): bonds with an end at one
+  /// of these particles never break. Adds to the zones given before.
+  void hold(const std::vector<ParticleId>& particles);
+
   /// The bonds due at u (N x d), kept for apply(); returns how many (a bond found in both
   /// directions counts twice here, once in apply()).
   std::size_t find(const double* u);
@@ -49,6 +53,7 @@ class BondBreaking {
   double parameter_;
   std::optional<InstabilityCriterion> instability_;
   std::vector<BondPair> due_;
+  std::vector<char> held_;  // per particle: in a no-fail zone (empty: none)
   std::vector<double> H_, sigma_, sigma1_;  // workspaces: grad u, stresses, sigma1
   std::size_t broken_ = 0, detached_ = 0;
 };

@@ -21,7 +21,8 @@ struct Loading {
   std::vector<std::int64_t> fixed;  ///< degree-of-freedom indices (i*dofs_per_particle + a)
   std::vector<double> value;        ///< prescribed displacement at full load (m)
   /// Prescribed velocities (m/s), parallel to `fixed`, or empty: constraint k's target grows
-  /// by rate[k] t with the time t of a dynamic run (Verlet), whatever the load factor.
+  /// by rate[k] t with the time t of a dynamic run (Verlet; with a ramp time, the ramped time
+  /// the solver passes: the integral of the load factor).
   std::vector<double> rate;
   std::vector<double> force;        ///< external force at full load (N), one per dof
   // Couplings of face-located constraints (empty when every constraint is on its particle).

@@ -64,6 +64,12 @@ class NonlocalOperator {
   /// Order 2: the fit is detached when the ratio of the extreme eigenvalues of its moment
   /// matrix (in the basis of xi / delta_i) falls to this.
   static constexpr double detach_ratio = 1e-10;
+  /// Order 1, after breaks: a family is also detached when the smallest eigenvalue of its
+  /// shape tensor falls below this share of its value at assembly. The row's stiffness grows
+  /// as that eigenvalue falls (G_i = K_i^-1 ...), so a particle hanging on a few bonds would
+  /// need a time step far below the one the run started with; this bounds the growth to
+  /// about 1 / detach_share (measured on a bar that breaks through: docs/verification/bar.md).
+  static constexpr double detach_share = 0.25;
 
   NonlocalOperator() = default;
   /// Assembles the weights from the live bonds of `graph` and w_ij V_j (weights.wv). Throws
@@ -210,6 +216,7 @@ class NonlocalOperator {
   WeightPrecision precision_ = WeightPrecision::float64;
   std::vector<double> x_, wv_;  // positions and w_ij V_j (row order): the inputs of a refresh
   std::vector<double> K_;       // K_i of the live family
+  std::vector<double> kmin0_;   // the smallest eigenvalue of K_i at assembly (order 1)
   std::vector<std::uint8_t> attached_;
   std::vector<ParticleId> detached_;
   Block grad_, hess_;
