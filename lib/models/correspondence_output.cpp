@@ -8,6 +8,7 @@
 
 #include "perinom/fracture/bond_measures.hpp"
 #include "perinom/materials/measures.hpp"
+#include "perinom/operators/hourglass_energy.hpp"
 #include "perinom/models/correspondence.hpp"
 
 namespace perinom {
@@ -98,6 +99,10 @@ std::vector<OutputField> CorrespondenceModel::output_fields(const double* u, boo
     OutputField s1{"max_principal_stress", 1, std::vector<double>(n)};
     for (std::size_t i = 0; i < n; ++i) s1.values[i] = max_principal_stress(sigma.data() + i * 9);
     out.push_back(std::move(s1));
+    // Where the stabilization holds zero-energy modes (first order: the classical fracture
+    // model's; the second-order fit's energy has another form and is not written).
+    if (c_hg_ > 0.0 && order_ == 1)
+      out.push_back({"hourglass_energy_density", 1, hourglass_energy_density(G_, u, c_hg_ * 2.0 * material_.mu())});
   }
   // The law's own fields (its committed states; "stress" is the model's above).
   for (const LawField& field : law_->fields()) {

@@ -15,7 +15,9 @@
 #include "perinom/materials/measures.hpp"
 #include "perinom/neighbors/search.hpp"
 #include "perinom/operators/bond_weights.hpp"
+#include "perinom/operators/hourglass_energy.hpp"
 #include "perinom/operators/nonlocal_operator.hpp"
+#include "perinom/operators/stabilization.hpp"
 
 using namespace perinom;
 
@@ -147,4 +149,41 @@ TEST_CASE("the one-pass bond selection equals the per-bond arrays and does not d
     CHECK(detail::live_maximum(g, stretch) == *std::max_element(s.begin(), s.end()));
   }
   omp_set_num_threads(before);
+}
+
+TEST_CASE("the hourglass energy density sums to the stabilization's energy, with broken bonds", "[fracture]") {
+  for (const int d : {2, 3}) {
+    INFO("dim " << d);
+    const PointCloud c = test::lattice(d, d == 2 ? 12 : 6, 0.3);
+    const Families f = radius_families(c, 2.515);
+    auto graph = std::make_shared<BondGraph>(f);
+    NonlocalOperator G(c, graph, bond_weights(c, f, Influence::inverse_square));
+    // Break every fifth bond of the first half of the rows, then refresh those rows.
+    std::vector<BondPair> cut;
+    for (std::size_t i = 0; i < c.size() / 2; ++i)
+      for (Offset k = f.begin(i); k < f.end(i); k += 5) cut.emplace_back(static_cast<ParticleId>(i), f.neighbors[k]);
+    const std::vector<ParticleId> rows = graph->rows_touched(cut);
+    for (const auto& [i, j] : cut) graph->break_bond(i, j);
+    G.refresh_rows(rows);
+    const double modulus = 0.5 * 2.0 * 80e9;
+    const Stabilization S(c, G, modulus);
+    const std::vector<double> u = test::random_field(c.size() * d, 1e-4);
+    std::vector<double> H(c.size() * d * d);
+    G.apply(u.data(), d, H.data());
+    const std::vector<double> psi = hourglass_energy_density(G, u.data(), modulus);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      CHECK(psi[i] >= 0.0);
+      sum += c.volume[i] * psi[i];
+    }
+    const double W = S.energy(u.data(), d, H.data(), nullptr);
+    REQUIRE(W > 0.0);
+    CHECK(sum == Approx(W).epsilon(1e-12));
+    // An affine field stores none.
+    std::vector<double> v(c.size() * d);
+    for (std::size_t i = 0; i < c.size(); ++i)
+      for (int a = 0; a < d; ++a) v[i * d + a] = 1e-3 * c.x[i * d + (a + 1) % d] - 2e-3 * c.x[i * d + a];
+    const std::vector<double> zero = hourglass_energy_density(G, v.data(), modulus);
+    CHECK(*std::max_element(zero.begin(), zero.end()) <= 1e-20 * modulus);
+  }
 }

@@ -52,6 +52,11 @@ TEST_CASE("SENT (coarse): the precrack cuts the notch and the crack crosses to t
   const auto& sigma = field(fields, "stress");
   const auto& sigma1 = field(fields, "max_principal_stress");
   for (std::size_t i = 0; i < n; i += 37) CHECK(sigma1[i] == max_principal_stress(sigma.data() + i * 9));
+  // The stabilization's energy: nonnegative, largest along the crack (the cut families).
+  const auto& hg = field(fields, "hourglass_energy_density");
+  CHECK(*std::min_element(hg.begin(), hg.end()) >= 0.0);
+  const std::size_t top = std::max_element(hg.begin(), hg.end()) - hg.begin();
+  CHECK(std::abs(p.cloud.x[top * 2 + 1] - mid) < 3 * dx);
   // The two rows next to mid-height are damaged all along the right half; rows more than
   // four spacings away are intact, but for the two rows at the held and the pulled edge,
   // where a few bonds at the right corners break after the halves separate (d = 0.1 at five
