@@ -240,6 +240,12 @@ int run(const Options& opt) {
       std::printf("perinom: note: %lld particle(s) lost a family that spans the %s and were detached: they carry no "
                   "stress and move freely (summary.json solver.fracture.detached_particles)\n",
                   static_cast<long long>(c.detached), scene.dim == 2 ? "plane" : "space");
+    f["time_step_reductions"] = static_cast<long long>(c.step_reductions);
+    f["final_time_step"] = c.final_dt;
+    if (c.step_reductions > 0)
+      std::printf("perinom: note: broken bonds lowered the stable time step %lld time(s); the run kept its ratio to "
+                  "it and ended at dt = %.4g s (summary.json solver.fracture.final_time_step)\n",
+                  static_cast<long long>(c.step_reductions), c.final_dt);
     f["intact_step_seconds"] = intact;
     f["find_seconds_per_step"] = find;
     f["break_seconds_per_breaking_step"] = change;

@@ -1,6 +1,7 @@
 #include "perinom/fracture/bond_breaking.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "bond_selection.hpp"
@@ -29,7 +30,7 @@ void BondBreaking::hold(const std::vector<ParticleId>& particles) {
   for (const ParticleId i : particles) held_.at(i) = 1;
 }
 
-std::size_t BondBreaking::find(const double* u) {
+std::size_t BondBreaking::find(const double* u, const double* H) {
   using detail::live_bonds_above;
   using detail::live_maximum;
   const BondGraph& g = model_->G().graph();
@@ -41,9 +42,11 @@ std::size_t BondBreaking::find(const double* u) {
       // One pass a step: the largest stretch until armed (and at that step the largest
       // hourglass strain, once; none exceeds it then), afterwards the hourglass strains.
       auto hourglass = [&] {
-        H_.resize(cloud_->size() * d * d);
-        model_->gradient(u, H_.data());
-        return HourglassStrain{d, cloud_->x.data(), u, H_.data()};
+        if (!H) {
+          H_.resize(cloud_->size() * d * d);
+          model_->gradient(u, H_.data());
+        }
+        return HourglassStrain{d, cloud_->x.data(), u, H ? H : H_.data()};
       };
       if (!instability_->armed()) {
         instability_->arm(live_maximum(g, stretch), [&] { return live_maximum(g, hourglass()); });
@@ -70,10 +73,33 @@ std::size_t BondBreaking::find(const double* u) {
   return due_.size();
 }
 
+double BondBreaking::stable_time_step() {
+  if (row_sums_.empty()) {
+    row_sums_ = model_->stiffness_row_sums();
+    mass_ = model_->lumped_mass();
+  }
+  double w2 = 0.0;
+  for (std::size_t k = 0; k < row_sums_.size(); ++k) w2 = std::max(w2, row_sums_[k] / mass_[k]);
+  return 2.0 / std::sqrt(w2);
+}
+
 std::size_t BondBreaking::apply() {
   if (due_.empty()) return 0;
   const BondBreaks b = model_->break_bonds(due_);
   due_.clear();
+  if (!row_sums_.empty()) {
+    // A refreshed row m of G and S changes the stiffness rows of m and of its family.
+    const BondGraph& g = model_->G().graph();
+    std::vector<ParticleId> rows = b.rows;
+    for (const ParticleId m : b.rows)
+      for (Offset k = g.begin(m); k < g.end(m); ++k) rows.push_back(g.col(k));
+    std::sort(rows.begin(), rows.end());
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+    const std::vector<double> sums = model_->stiffness_row_sums(rows);
+    const int d = cloud_->dim;
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      for (int a = 0; a < d; ++a) row_sums_[rows[r] * d + a] = sums[r * d + a];
+  }
   broken_ += b.broken;
   detached_ = b.detached.size();
   return b.broken;

@@ -272,17 +272,45 @@ void CorrespondenceModel::commit(const double* u) {
   law_->commit();
 }
 
+namespace {
+
+// sum_j sum_c |K_(i a),(j c)| of a visited block row into sums[slot * d + a].
+void add_row_sums(int d, std::size_t slot, const std::vector<ParticleId>& cols, const std::vector<double>& blocks,
+                  double* sums) {
+  for (std::size_t k = 0; k < cols.size(); ++k)
+    for (int a = 0; a < d; ++a)
+      for (int c = 0; c < d; ++c) sums[slot * d + a] += std::abs(blocks[(k * d + a) * d + c]);
+}
+
+}  // namespace
+
 std::vector<double> CorrespondenceModel::stiffness_row_sums() const {
   // The elastic stiffness: it bounds the plastic tangents, so the explicit mass stays safe.
   const int d = dim_;
   std::vector<double> sums(particles() * d, 0.0);
   std::vector<double> C(d * d * d * d);
   material_.tangent(C.data());
-  visit_rows(PointwiseTangent{C.data(), 0, volume_.data()}, [&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
-    for (std::size_t k = 0; k < cols.size(); ++k)
-      for (int a = 0; a < d; ++a)
-        for (int c = 0; c < d; ++c) sums[i * d + a] += std::abs(blocks[(k * d + a) * d + c]);
-  });
+  visit_rows(PointwiseTangent{C.data(), 0, volume_.data()},
+             [&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
+               add_row_sums(d, i, cols, blocks, sums.data());
+             });
+  return sums;
+}
+
+std::vector<double> CorrespondenceModel::stiffness_row_sums(const std::vector<ParticleId>& rows) const {
+  if (formulation_ != Formulation::classical)
+    throw std::logic_error("stiffness_row_sums(rows): for the classical formulation");
+  const int d = dim_;
+  if (!std::is_sorted(rows.begin(), rows.end()) || std::adjacent_find(rows.begin(), rows.end()) != rows.end())
+    throw std::invalid_argument("stiffness_row_sums(rows): the rows must be sorted and distinct");
+  std::vector<double> sums(rows.size() * d, 0.0);
+  std::vector<double> C(d * d * d * d);
+  material_.tangent(C.data());
+  for_each_tangent_row(rows, G_, PointwiseTangent{C.data(), 0, volume_.data()}, S_.get(),
+                       [&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
+                         const auto at = std::lower_bound(rows.begin(), rows.end(), static_cast<ParticleId>(i));
+                         add_row_sums(d, static_cast<std::size_t>(at - rows.begin()), cols, blocks, sums.data());
+                       });
   return sums;
 }
 

@@ -2,15 +2,21 @@
 
 namespace perinom {
 
-void for_each_block_row(std::size_t rows, std::size_t columns, int block, const std::function<RowFill()>& make_fill,
-                        const BlockRowVisitor& visit) {
+namespace {
+
+// Rows row_of(0) .. row_of(count - 1), in parallel, each thread with its own fill and
+// accumulator.
+template <class RowOf>
+void block_rows(std::size_t count, RowOf row_of, std::size_t columns, int block,
+                const std::function<RowFill()>& make_fill, const BlockRowVisitor& visit) {
 #pragma omp parallel
   {
     RowAccumulator acc(columns, block);
     const RowFill fill = make_fill();
     std::vector<double> blocks;
 #pragma omp for schedule(dynamic, 64)
-    for (std::size_t i = 0; i < rows; ++i) {
+    for (std::size_t r = 0; r < count; ++r) {
+      const std::size_t i = row_of(r);
       fill(i, acc);
       acc.finish();
       blocks.resize(acc.cols().size() * block);
@@ -20,6 +26,19 @@ void for_each_block_row(std::size_t rows, std::size_t columns, int block, const 
       acc.clear();
     }
   }
+}
+
+}  // namespace
+
+void for_each_block_row(std::size_t rows, std::size_t columns, int block, const std::function<RowFill()>& make_fill,
+                        const BlockRowVisitor& visit) {
+  block_rows(rows, [](std::size_t r) { return r; }, columns, block, make_fill, visit);
+}
+
+void for_each_block_row(const std::vector<ParticleId>& rows, std::size_t columns, int block,
+                        const std::function<RowFill()>& make_fill, const BlockRowVisitor& visit) {
+  block_rows(rows.size(), [&rows](std::size_t r) { return static_cast<std::size_t>(rows[r]); }, columns, block,
+             make_fill, visit);
 }
 
 }  // namespace perinom

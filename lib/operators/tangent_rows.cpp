@@ -94,4 +94,10 @@ void for_each_tangent_row(const NonlocalOperator& G, const PointwiseTangent& tan
                      [&] { return RowFill(TangentRowFill(G, tangent, S, strong, local)); }, visit);
 }
 
+void for_each_tangent_row(const std::vector<ParticleId>& rows, const NonlocalOperator& G,
+                          const PointwiseTangent& tangent, const StabilizationTerm* S, const BlockRowVisitor& visit) {
+  for_each_block_row(rows, G.rows(), G.dim() * G.dim(),
+                     [&] { return RowFill(TangentRowFill(G, tangent, S, nullptr, nullptr)); }, visit);
+}
+
 }  // namespace perinom

@@ -106,8 +106,11 @@ std::vector<SolverEntry> make_solvers() {
       const double parameter = c == DamageCriterion::instability ? d->s_max : c == DamageCriterion::stretch ? d->s_c : d->f_t;
       breaking.emplace(p.as<CorrespondenceModel>(), p.cloud, c, parameter);
       for (const Region& zone : d->no_fail) breaking->hold(select(zone, p.scene.geometry, p.cloud));
-      changes = {[&breaking](const double* x) { return breaking->find(x); }, [&breaking] { return breaking->apply(); },
-                 d->every};
+      // find runs at the u whose force the step just took (ModelChanges): its grad u is kept.
+      const CorrespondenceModel& model = p.as<CorrespondenceModel>();
+      changes = {[&breaking, &model](const double* x) { return breaking->find(x, model.last_gradient()); },
+                 [&breaking] { return breaking->apply(); },
+                 d->every, [&breaking] { return breaking->stable_time_step(); }};
     }
     SolveReport r = solve_verlet(p.physics(), p.loading, verlet_options(p.scene.solver), u, v, h.progress, h.observe,
                                  h.verlet_checkpoints, h.verlet_resume, breaking ? &changes : nullptr);

@@ -34,7 +34,10 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   v.resize(n, 0.0);
   if (progress) progress->phase("summing the stiffness rows for the stable time step");
   rep.stable_time_step = stable_time_step(model);
-  const double dt = resume ? resume->dt : opt.dt > 0.0 ? opt.dt : opt.safety * rep.stable_time_step;
+  double dt = resume ? resume->dt : opt.dt > 0.0 ? opt.dt : opt.safety * rep.stable_time_step;
+  // Kept when changes lower the stable step (0: no finite stable step to follow).
+  const double dt_per_stable =
+      std::isfinite(rep.stable_time_step) && rep.stable_time_step > 0.0 ? dt / rep.stable_time_step : 0.0;
   auto inv_mass = model.lumped_mass();
   for (auto& m : inv_mass) m = 1.0 / m;
   const double* fext = loading.force.empty() ? nullptr : loading.force.data();
@@ -186,6 +189,10 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
           const double before = model.energy(u.data());
           changed += changes->apply();
           released += before - model.energy(u.data());
+          if (changes->stable_step && dt_per_stable > 0.0) {
+            const double lowered = dt_per_stable * changes->stable_step();
+            if (lowered < dt) dt = lowered, ++rep.changes.step_reductions;
+          }
           accelerate(step, t);
           rep.changes.change_seconds += wall_seconds() - t1;
           ++rep.changes.changing_steps;
@@ -205,6 +212,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     rep.iterations = step;
     rep.end_time = t;
     rep.changes.loop_seconds = wall_seconds() - loop_start;  // also right when a later step fails
+    rep.changes.final_dt = dt;
     if (progress && step % 50 == 0) {
       sample.iteration = step;
       sample.time = t;

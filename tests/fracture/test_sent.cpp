@@ -7,9 +7,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "perinom/fracture/bond_breaking.hpp"
 #include "perinom/materials/measures.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/scene/problem.hpp"
+#include "perinom/solvers/verlet.hpp"
 #include "perinom/scene/registry.hpp"
 #include "perinom/scene/scene.hpp"
 
@@ -102,4 +104,33 @@ TEST_CASE("SENT (coarse) with the bottom held at its face: the pulled top's work
   INFO("energy balance " << last[5] << " J of " << last[4] << " J of external work");
   CHECK(last[4] > 1.0);
   CHECK(std::abs(last[5]) < 0.01 * last[4]);
+}
+
+TEST_CASE("the stable time step kept through breaks equals the one summed anew over every row", "[fracture][sent]") {
+  // BondBreaking sums again only the stiffness rows its breaks change; after two rounds of
+  // breaks (a stretch criterion on a random field breaks bonds all over the plate) its step
+  // is the one of the whole model, bit for bit up to the order of a maximum.
+  const Scene scene = read_scene(std::string(PERINOM_SOURCE_DIR) + "/examples/sent.yaml");
+  Problem p = build_problem(scene);
+  auto& model = p.as<CorrespondenceModel>();
+  BondBreaking breaking(model, p.cloud, DamageCriterion::stretch, 0.05);
+  const double before = breaking.stable_time_step();
+  CHECK(before == stable_time_step(model));
+  std::vector<double> u(p.physics().dofs());
+  for (std::size_t k = 0; k < u.size(); ++k) u[k] = 4e-6 * std::sin(1.7 * k * k + 0.3 * k);
+  for (int round = 0; round < 2; ++round) {
+    REQUIRE(breaking.find(u.data()) > 0);
+    breaking.apply();
+    for (auto& x : u) x *= 1.5;
+  }
+  INFO(breaking.broken() << " bonds broken, " << breaking.detached() << " particles detached");
+  // The gradient the force leaves behind is G u (what find reads in a Verlet run).
+  std::vector<double> f(u.size()), H(p.cloud.size() * 4);
+  model.internal_force(u.data(), f.data());
+  model.gradient(u.data(), H.data());
+  CHECK(std::equal(H.begin(), H.end(), model.last_gradient()));
+  CHECK(breaking.broken() > 100);
+  const double after = breaking.stable_time_step();
+  CHECK(after == Approx(stable_time_step(model)).epsilon(1e-14));
+  CHECK(after < before);
 }

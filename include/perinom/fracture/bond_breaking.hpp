@@ -34,10 +34,17 @@ class BondBreaking {
   void hold(const std::vector<ParticleId>& particles);
 
   /// The bonds due at u (N x d), kept for apply(); returns how many (a bond found in both
-  /// directions counts twice here, once in apply()).
-  std::size_t find(const double* u);
+  /// directions counts twice here, once in apply()). H: grad u at u when the caller has it
+  /// (CorrespondenceModel::last_gradient() right after the force at u), else nullptr and the
+  /// instability criterion takes it from G.
+  std::size_t find(const double* u, const double* H = nullptr);
   /// Breaks the bonds find() kept; returns the bonds that died (pairs, once each).
   std::size_t apply();
+
+  /// The model's stable time step now, 2 / sqrt(max_i sum_j |K_ij| / m_i) (Gershgorin, as
+  /// solve_verlet's): the first call sums every stiffness row; after that each apply() sums
+  /// anew only the rows its breaks change (the refreshed rows and their families).
+  double stable_time_step();
 
   /// Bonds broken so far by apply() (pairs).
   std::size_t broken() const { return broken_; }
@@ -54,6 +61,7 @@ class BondBreaking {
   std::optional<InstabilityCriterion> instability_;
   std::vector<BondPair> due_;
   std::vector<char> held_;  // per particle: in a no-fail zone (empty: none)
+  std::vector<double> row_sums_, mass_;  // per dof, once stable_time_step() has been asked
   std::vector<double> H_, sigma_, sigma1_;  // workspaces: grad u, stresses, sigma1
   std::size_t broken_ = 0, detached_ = 0;
 };

@@ -110,6 +110,10 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   double energy(const double* u) override;
   std::vector<double> lumped_mass() const override;
   std::vector<double> stiffness_row_sums() const override;
+  /// The same for the listed particles' rows only (sorted, distinct; d values each), as
+  /// they are after break_bonds: a fracture run's stable time step follows its breaks by them.
+  /// The classical formulation (the one that breaks bonds) only; throws std::logic_error else.
+  std::vector<double> stiffness_row_sums(const std::vector<ParticleId>& rows) const;
   std::vector<std::pair<std::string, std::size_t>> memory() const override;
   void follow_loads(const Loading& loading, double s) override;
 
@@ -121,6 +125,9 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// grad u at every particle (N x d x d), and the 3 x 3 Cauchy stress (N x 9): the law's
   /// at u from its committed states (PointwiseLaw::cauchy), nothing kept.
   void gradient(const double* u, double* H) const;
+  /// grad u (N x d x d) at the u of the last internal_force or energy call, kept from it:
+  /// what a caller that evaluated the force at u reads instead of another product with G.
+  const double* last_gradient() const { return H_.data(); }
   void stress3(const double* u, std::vector<double>& sigma) const;
 
   /// The pointwise law between G and G^T, and the history it keeps.

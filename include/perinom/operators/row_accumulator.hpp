@@ -68,5 +68,8 @@ using BlockRowVisitor =
 /// own) and its own accumulator; visit is called concurrently for distinct rows.
 void for_each_block_row(std::size_t rows, std::size_t columns, int block, const std::function<RowFill()>& make_fill,
                         const BlockRowVisitor& visit);
+/// The same for the listed rows only.
+void for_each_block_row(const std::vector<ParticleId>& rows, std::size_t columns, int block,
+                        const std::function<RowFill()>& make_fill, const BlockRowVisitor& visit);
 
 }  // namespace perinom

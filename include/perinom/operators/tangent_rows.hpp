@@ -42,5 +42,8 @@ struct StrongRows {
 void for_each_tangent_row(
     const NonlocalOperator& G, const PointwiseTangent& tangent, const StabilizationTerm* S,
     const BlockRowVisitor& visit, const StrongRows* strong = nullptr, const double* local = nullptr);
+/// The same for the listed rows only (distinct).
+void for_each_tangent_row(const std::vector<ParticleId>& rows, const NonlocalOperator& G,
+                          const PointwiseTangent& tangent, const StabilizationTerm* S, const BlockRowVisitor& visit);
 
 }  // namespace perinom

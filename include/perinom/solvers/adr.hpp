@@ -41,6 +41,8 @@ struct SolveReport {
     double loop_seconds = 0.0, find_seconds = 0.0, change_seconds = 0.0;
     std::int64_t broken = 0;    ///< bonds broken during the run (set by whoever breaks them)
     std::int64_t detached = 0;  ///< particles detached so far, precracks included (likewise)
+    std::int64_t step_reductions = 0;  ///< times the changes lowered the time step (Verlet)
+    double final_dt = 0.0;             ///< the time step at the end (Verlet with changes)
   };
   Changes changes;
 };

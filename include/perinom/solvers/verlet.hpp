@@ -49,11 +49,16 @@ struct VerletState {
 /// them (returning how many it made), takes the energy again (the difference is the energy
 /// the changes release, a history column, so that kinetic + strain + released - external
 /// work stays at its initial value) and the force anew, which the next step starts from. The
-/// stable step is not recomputed: dt stays the one the run started with.
+/// stable step follows the changes when stable_step is given (below).
 struct ModelChanges {
+  /// Called at the end of a step, at the u whose internal force the step evaluated last.
   std::function<std::size_t(const double* u)> find;
   std::function<std::size_t()> apply;
   std::int64_t every = 1;
+  /// Optional: the model's stable time step after apply(). The run keeps the ratio of its
+  /// step to the stable step it started with: when a change lowers the stable step, dt
+  /// follows it down (never up again), so broken bonds cannot make the scheme unstable.
+  std::function<double()> stable_step;
 };
 
 /// The stable step 2 / omega_max, with omega_max^2 bounded by max_i sum_j |K_ij| / m_i
