@@ -33,7 +33,8 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   u.resize(n, 0.0);
   v.resize(n, 0.0);
   if (progress) progress->phase("summing the stiffness rows for the stable time step");
-  rep.stable_time_step = stable_time_step(model);
+  // The changes keep the row sums they follow: the same step, summed once.
+  rep.stable_time_step = changes && changes->stable_step ? changes->stable_step() : stable_time_step(model);
   double dt = resume ? resume->dt : opt.dt > 0.0 ? opt.dt : opt.safety * rep.stable_time_step;
   // Kept when changes lower the stable step (0: no finite stable step to follow).
   const double dt_per_stable =

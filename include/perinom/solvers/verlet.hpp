@@ -55,7 +55,8 @@ struct ModelChanges {
   std::function<std::size_t(const double* u)> find;
   std::function<std::size_t()> apply;
   std::int64_t every = 1;
-  /// Optional: the model's stable time step after apply(). The run keeps the ratio of its
+  /// Optional: the model's stable time step now (called once before the first step, in place
+  /// of stable_time_step(model), and after each apply()). The run keeps the ratio of its
   /// step to the stable step it started with: when a change lowers the stable step, dt
   /// follows it down (never up again), so broken bonds cannot make the scheme unstable.
   std::function<double()> stable_step;
