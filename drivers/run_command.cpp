@@ -222,6 +222,24 @@ int run(const Options& opt) {
   if (dynamic) {
     solver["stable_time_step"] = rep.stable_time_step;
     solver["end_time"] = rep.end_time;
+    // The energy balance at the end (kinetic + strain + released - work, against the initial
+    // energy), over the largest work or energy recorded: the solver's guard stops a run only
+    // far beyond 1% (solver.energy_tolerance), so a run that ends beyond it says so.
+    const History& h = rep.history;
+    const std::size_t cols = h.columns.size();
+    if (h.rows() > 0 && cols > 5 && h.columns[5] == "total_energy") {
+      double scale = 0.0;
+      for (std::size_t r = 0; r < h.rows(); ++r)
+        scale = std::max({scale, std::abs(h.values[r * cols + 4]), h.values[r * cols + 2] + h.values[r * cols + 3]});
+      const double defect = std::abs(h.values[(h.rows() - 1) * cols + 5] - h.values[5]);
+      const double relative = scale > 0.0 ? defect / scale : 0.0;
+      solver["energy_balance"] = relative;
+      if (relative > 0.01)
+        std::printf("perinom: warning: the energy balance ends off by %.3g%% of the largest work or energy (kinetic + "
+                    "strain + released - external work; summary.json solver.energy_balance): the dynamics are not "
+                    "to be trusted (zero-energy modes without stabilization, or too large a time step)\n",
+                    100.0 * relative);
+    }
   }
   if (scene.damage && rep.iterations > 0) {
     // The cost of breaking: a step that looks (find) and one that breaks, against an intact
