@@ -10,18 +10,19 @@ namespace perinom {
 void Loading::fix(std::int64_t dof, double v, int support_index, double v_rate) {
   const bool tracked = support_index >= 0 || !support.empty();
   if (tracked) support.resize(fixed.size(), -1);
-  if (v_rate != 0.0) rate.resize(fixed.size(), 0.0);
+  const bool rated = v_rate != 0.0 || !rate.empty();  // (rate is still empty before the first dof)
+  if (rated) rate.resize(fixed.size(), 0.0);
   for (std::size_t k = 0; k < fixed.size(); ++k)
     if (fixed[k] == dof) {
       value[k] = v;
       if (tracked) support[k] = support_index;
-      if (!rate.empty()) rate[k] = v_rate;
+      if (rated) rate[k] = v_rate;
       return;
     }
   fixed.push_back(dof);
   value.push_back(v);
   if (tracked) support.push_back(support_index);
-  if (!rate.empty()) rate.push_back(v_rate);
+  if (rated) rate.push_back(v_rate);
 }
 
 int Loading::add_support(const std::string& name) {
