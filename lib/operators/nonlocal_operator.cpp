@@ -223,7 +223,7 @@ void NonlocalOperator::refresh_rows(const std::vector<ParticleId>& rows_in) {
 }
 
 std::size_t NonlocalOperator::memory_bytes() const {
-  return grad_.bytes() + hess_.bytes() + (x_.size() + wv_.size() + K_.size()) * sizeof(double) +
+  return grad_.bytes() + hess_.bytes() + (x_.size() + wv_.size() + K_.size() + kmin0_.size()) * sizeof(double) +
          attached_.size() + detached_.size() * sizeof(ParticleId);
 }
 

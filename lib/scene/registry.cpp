@@ -107,8 +107,8 @@ std::vector<SolverEntry> make_solvers() {
       breaking.emplace(p.as<CorrespondenceModel>(), p.cloud, c, parameter);
       for (const Region& zone : d->no_fail) breaking->hold(select(zone, p.scene.geometry, p.cloud));
       // find runs at the u whose force the step just took (ModelChanges): its grad u is kept.
-      const CorrespondenceModel& model = p.as<CorrespondenceModel>();
-      changes = {[&breaking, &model](const double* x) { return breaking->find(x, model.last_gradient()); },
+      const CorrespondenceModel* model = &p.as<CorrespondenceModel>();
+      changes = {[&breaking, model](const double* x) { return breaking->find(x, model->last_gradient()); },
                  [&breaking] { return breaking->apply(); },
                  d->every, [&breaking] { return breaking->stable_time_step(); }};
     }
