@@ -26,14 +26,8 @@ std::vector<double> hourglass_energy_density(const NonlocalOperator& G, const do
     double s = 0.0;
     for (Offset k = g.begin(i); k < g.end(i); ++k) {
       if (!g.alive(k)) continue;
-      const std::size_t j = g.col(k);
-      double z2 = 0.0;
-      for (int a = 0; a < d; ++a) {
-        double z = u[j * d + a] - u[i * d + a];
-        for (int b = 0; b < d; ++b) z -= H[(i * d + a) * d + b] * (x[j * d + b] - x[i * d + b]);
-        z2 += z * z;
-      }
-      s += wv[k] * z2;
+      double l2;
+      s += wv[k] * hourglass_z2(d, x.data(), u, H.data(), i, g.col(k), l2);
     }
     psi[i] = 0.5 * modulus / tr * s;
   }

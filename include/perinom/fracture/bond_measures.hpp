@@ -6,6 +6,7 @@
 
 #include "perinom/geometry/point_cloud.hpp"
 #include "perinom/neighbors/bond_graph.hpp"
+#include "perinom/operators/hourglass_energy.hpp"
 
 namespace perinom {
 
@@ -33,13 +34,8 @@ struct HourglassStrain {
   const double* u;  ///< displacements, N x d
   const double* H;  ///< grad u, N x d x d
   double operator()(std::size_t i, std::size_t j) const {
-    double xi[3], z2 = 0.0, l2 = 0.0;
-    for (int b = 0; b < d; ++b) xi[b] = x[j * d + b] - x[i * d + b], l2 += xi[b] * xi[b];
-    for (int a = 0; a < d; ++a) {
-      double z = u[j * d + a] - u[i * d + a];
-      for (int b = 0; b < d; ++b) z -= H[(i * d + a) * d + b] * xi[b];
-      z2 += z * z;
-    }
+    double l2;
+    const double z2 = hourglass_z2(d, x, u, H, i, j, l2);
     return std::sqrt(z2 / l2);
   }
 };

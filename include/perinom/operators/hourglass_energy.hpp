@@ -1,11 +1,28 @@
 #pragma once
 /// @file The first-order stabilization's energy at each particle (THEORY sec. 4): what the
 /// VTK field `hourglass_energy_density` shows, where the zero-energy modes are held.
+#include <cstddef>
 #include <vector>
 
 #include "perinom/operators/nonlocal_operator.hpp"
 
 namespace perinom {
+
+/// |z_ij|^2 with z_ij = u_j - u_i - H_i xi_ij, xi_ij = x_j - x_i, and |xi_ij|^2 into l2: the
+/// one bond formula behind the hourglass energy and the fracture criterion's hourglass strain
+/// (positions and u N x d, H N x d x d).
+inline double hourglass_z2(int d, const double* x, const double* u, const double* H, std::size_t i, std::size_t j,
+                           double& l2) {
+  double xi[3], z2 = 0.0;
+  l2 = 0.0;
+  for (int b = 0; b < d; ++b) xi[b] = x[j * d + b] - x[i * d + b], l2 += xi[b] * xi[b];
+  for (int a = 0; a < d; ++a) {
+    double z = u[j * d + a] - u[i * d + a];
+    for (int b = 0; b < d; ++b) z -= H[(i * d + a) * d + b] * xi[b];
+    z2 += z * z;
+  }
+  return z2;
+}
 
 /// psi_i = 1/2 (modulus / tr K_i) sum_j w_ij V_j |z_ij|^2 (J/m^3) over the live bonds, with
 /// z_ij = u_j - u_i - H_i xi_ij and H = grad u from G (first order, built from a fit: its
