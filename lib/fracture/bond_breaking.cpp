@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 #include "bond_selection.hpp"
 #include "perinom/fracture/bond_measures.hpp"
@@ -31,41 +32,57 @@ void BondBreaking::hold(const std::vector<ParticleId>& particles) {
 }
 
 std::size_t BondBreaking::find(const double* u, const double* H) {
-  using detail::live_bonds_above;
+  using detail::live_bonds_where;
   using detail::live_maximum;
   const BondGraph& g = model_->G().graph();
   const int d = cloud_->dim;
-  const BondStretch stretch{d, cloud_->x.data(), u};
+  const double* x = cloud_->x.data();
   due_.clear();
-  switch (criterion_) {
-    case DamageCriterion::instability: {
-      // One pass a step: the largest stretch until armed (and at that step the largest
-      // hourglass strain, once; none exceeds it then), afterwards the hourglass strains.
-      auto hourglass = [&] {
-        if (!H) {
-          H_.resize(cloud_->size() * d * d);
-          model_->gradient(u, H_.data());
-        }
-        return HourglassStrain{d, cloud_->x.data(), u, H ? H : H_.data()};
-      };
-      if (!instability_->armed()) {
-        instability_->arm(live_maximum(g, stretch), [&] { return live_maximum(g, hourglass()); });
-        break;
-      }
-      due_ = live_bonds_above(g, instability_->threshold(), hourglass());
-      break;
+  auto gradient = [&] {  // from G only when the caller has none, and only when needed
+    if (!H) {
+      H_.resize(cloud_->size() * d * d);
+      model_->gradient(u, H_.data());
+      H = H_.data();
     }
-    case DamageCriterion::stretch:
-      due_ = live_bonds_above(g, parameter_, stretch);
-      break;
-    case DamageCriterion::stress: {
-      model_->stress3(u, sigma_);
-      sigma1_.resize(cloud_->size());
-      for (std::size_t i = 0; i < sigma1_.size(); ++i) sigma1_[i] = max_principal_stress(sigma_.data() + i * 9);
-      const double* s1 = sigma1_.data();
-      due_ = live_bonds_above(g, parameter_, [s1](std::size_t i, std::size_t j) { return 0.5 * (s1[i] + s1[j]); });
-      break;
+    return H;
+  };
+  // The bond passes, with the dimension a compile-time constant where it is 2 or 3. Squares
+  // are compared (no root per bond); the stretch and hourglass strain themselves are roots of
+  // the largest squares.
+  auto pass = [&](auto dim) {
+    const BondStretch stretch{dim, x, u};
+    if (criterion_ == DamageCriterion::stretch) {
+      due_ = live_bonds_where(g, [&](std::size_t i, std::size_t j) { return stretch.exceeds(i, j, parameter_); });
+      return;
     }
+    // Instability, one pass a step: the largest stretch until armed (and at that step the
+    // largest hourglass strain, once; none exceeds it then), afterwards the hourglass strains.
+    if (!instability_->armed()) {
+      const double ratio = live_maximum(g, [&](std::size_t i, std::size_t j) { return stretch.squared_ratio(i, j); });
+      instability_->arm(std::sqrt(ratio) - 1.0, [&] {
+        const HourglassStrain hourglass{dim, x, u, gradient()};
+        return std::sqrt(live_maximum(g, [&](std::size_t i, std::size_t j) { return hourglass.squared(i, j); }));
+      });
+      return;
+    }
+    const HourglassStrain hourglass{dim, x, u, gradient()};
+    const double t = instability_->threshold();
+    due_ = live_bonds_where(g, [&](std::size_t i, std::size_t j) { return hourglass.exceeds(i, j, t); });
+  };
+  if (criterion_ == DamageCriterion::stress) {
+    sigma_.resize(cloud_->size() * 9);
+    model_->law().cauchy(gradient(), sigma_.data());  // CorrespondenceModel::stress3 at grad u
+    sigma1_.resize(cloud_->size());
+    for (std::size_t i = 0; i < sigma1_.size(); ++i) sigma1_[i] = max_principal_stress(sigma_.data() + i * 9);
+    const double* s1 = sigma1_.data();
+    const double f_t = parameter_;
+    due_ = live_bonds_where(g, [s1, f_t](std::size_t i, std::size_t j) { return 0.5 * (s1[i] + s1[j]) > f_t; });
+  } else if (d == 2) {
+    pass(std::integral_constant<int, 2>{});
+  } else if (d == 3) {
+    pass(std::integral_constant<int, 3>{});
+  } else {
+    pass(d);
   }
   if (!held_.empty())
     due_.erase(std::remove_if(due_.begin(), due_.end(), [&](const BondPair& b) { return held_[b.first] || held_[b.second]; }),
@@ -87,6 +104,18 @@ std::size_t BondBreaking::apply() {
   if (due_.empty()) return 0;
   const BondBreaks b = model_->break_bonds(due_);
   due_.clear();
+  return account(b);
+}
+
+BondBreaks BondBreaking::apply(const double* u, double* f) {
+  if (due_.empty()) return {};
+  BondBreaks b = model_->break_bonds(due_, u, f);
+  due_.clear();
+  b.broken = account(b);
+  return b;
+}
+
+std::size_t BondBreaking::account(const BondBreaks& b) {
   if (!row_sums_.empty()) {
     // A refreshed row m of G and S changes the stiffness rows of m and of its family.
     const BondGraph& g = model_->G().graph();

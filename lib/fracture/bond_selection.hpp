@@ -23,11 +23,11 @@ double live_maximum(const BondGraph& g, const Value& value) {
   return top;
 }
 
-/// The live bonds (i, j) with value(i, j) > threshold, in row order whatever the thread count
+/// The live bonds (i, j) for which due(i, j) holds, in row order whatever the thread count
 /// (each thread takes a contiguous block of rows; the blocks are joined in order). One pass,
 /// no per-bond array: what a criterion costs per step.
-template <class Value>
-std::vector<BondPair> live_bonds_above(const BondGraph& g, double threshold, const Value& value) {
+template <class Due>
+std::vector<BondPair> live_bonds_where(const BondGraph& g, const Due& due) {
   std::vector<std::vector<BondPair>> found;
 #pragma omp parallel
   {
@@ -37,8 +37,7 @@ std::vector<BondPair> live_bonds_above(const BondGraph& g, double threshold, con
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < g.rows(); ++i)
       for (Offset k = g.begin(i); k < g.end(i); ++k)
-        if (g.alive(k) && value(i, static_cast<std::size_t>(g.col(k))) > threshold)
-          mine.emplace_back(static_cast<ParticleId>(i), g.col(k));
+        if (g.alive(k) && due(i, static_cast<std::size_t>(g.col(k)))) mine.emplace_back(static_cast<ParticleId>(i), g.col(k));
   }
   std::vector<BondPair> out;
   for (auto& f : found) out.insert(out.end(), f.begin(), f.end());

@@ -98,7 +98,7 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
   graph_ = std::make_shared<BondGraph>(families);
   G_ = NonlocalOperator(cloud, graph_, weights,
                         OperatorOptions{order_, false, consistent ? WeightPrecision::float64 : options.weight_precision});
-  const double modulus = options.stabilization * 2.0 * material.mu();  // c_i = modulus / tr K_i
+  const double modulus = modulus_ = options.stabilization * 2.0 * material.mu();  // c_i = modulus / tr K_i
   if (options.stabilization > 0.0 && order_ == 1 && consistent) {
     // S from the uncorrected G (zero on linear fields all the same), stored before G changes
     // and without it: its closed-form rows would read the corrected weights.
@@ -140,26 +140,6 @@ void CorrespondenceModel::make_consistent(const PointCloud& cloud, const Familie
     throw InputError(msg);
   }
   G_ = NonlocalOperator(G_.shared_graph(), dim_, std::move(g), precision);
-}
-
-BondBreaks CorrespondenceModel::break_bonds(const std::vector<std::pair<ParticleId, ParticleId>>& bonds) {
-  for (const auto& [i, j] : bonds)
-    if (static_cast<std::size_t>(i) >= particles() || static_cast<std::size_t>(j) >= particles())
-      throw std::out_of_range("break_bonds: bond (" + std::to_string(i) + ", " + std::to_string(j) +
-                              ") names a particle beyond the " + std::to_string(particles()) + " of the cloud");
-  if (formulation_ == Formulation::consistent)
-    throw std::logic_error("break_bonds: the consistent formulation's G~ comes from a global correction and "
-                           "cannot be refreshed row by row");
-  if (S_ && !S_->refreshable())
-    throw std::logic_error("break_bonds: " + S_->name() + " is stored without the operator it came from "
-                           "(with operator order 2, stabilization_storage matrix_free keeps it)");
-  BondBreaks out;
-  out.rows = graph_->rows_touched(bonds);
-  for (const auto& [i, j] : bonds) out.broken += graph_->break_bond(i, j) ? 1 : 0;
-  G_.refresh_rows(out.rows);
-  if (S_) S_->refresh_rows(out.rows);
-  out.detached = G_.detached();
-  return out;
 }
 
 void CorrespondenceModel::gradient(const double* u, double* H) const { G_.apply(u, dim_, H); }
@@ -213,7 +193,7 @@ double CorrespondenceModel::energy(const double* u) {
   const std::size_t n = particles();
   G_.apply(u, dim_, H_.data());
   double* psi = Q_.data();  // the energy densities (Q_ is scratch here)
-  law_->energies(H_.data(), psi);
+  for_each_law_block(n, [&](std::size_t lo, std::size_t hi) { law_->energies(lo, hi, H_.data(), psi); });
   // Summed in fixed blocks: the same bits for any thread count.
   double w = parallel_sums<1>(n, [&](std::size_t i, double* acc) { acc[0] += volume_[i] * psi[i]; })[0];
   if (S_) {

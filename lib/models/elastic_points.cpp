@@ -11,9 +11,9 @@ void ElasticPoints::stresses(std::size_t begin, std::size_t end, const double* H
   for (std::size_t i = begin; i < end; ++i) material_.stress(H + i * d2, P + i * d2);
 }
 
-void ElasticPoints::energies(const double* H, double* psi) {
+void ElasticPoints::energies(std::size_t begin, std::size_t end, const double* H, double* psi) {
   const std::size_t d2 = static_cast<std::size_t>(material_.dim) * material_.dim;
-  parallel_for(particles_, [&](std::size_t i) { psi[i] = material_.energy(H + i * d2); });
+  for (std::size_t i = begin; i < end; ++i) psi[i] = material_.energy(H + i * d2);
 }
 
 std::size_t ElasticPoints::tangents(const double*, std::vector<double>& C) const {

@@ -109,7 +109,10 @@ std::vector<SolverEntry> make_solvers() {
       // find runs at the u whose force the step just took (ModelChanges): its grad u is kept.
       const CorrespondenceModel* model = &p.as<CorrespondenceModel>();
       changes = {[&breaking, model](const double* x) { return breaking->find(x, model->last_gradient()); },
-                 [&breaking] { return breaking->apply(); },
+                 [&breaking](const double* x, double* f) {
+                   const BondBreaks b = breaking->apply(x, f);
+                   return ChangesMade{b.broken, b.released};
+                 },
                  d->every, [&breaking] { return breaking->stable_time_step(); }};
     }
     SolveReport r = solve_verlet(p.physics(), p.loading, verlet_options(p.scene.solver), u, v, h.progress, h.observe,

@@ -68,8 +68,8 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   };
   // The guard, part 1: the acceleration (and so the internal force) is finite. The constrained
   // dofs' forces move to the free dofs they couple to (Galerkin supports), then a = f / m.
-  auto accelerate = [&](std::int64_t step, double t) {
-    model.internal_force(u.data(), fint.data());
+  // From fint, the internal force at u (accelerate takes it first; a change updates it).
+  auto accelerate_from_force = [&](std::int64_t step, double t) {
     const double s = factor(t);
     parallel_for(n, [&](std::size_t k) { a[k] = (fext ? s * fext[k] : 0.0) - fint[k]; });
     loading.reduce(a.data());
@@ -78,6 +78,10 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
       acc[0] += a[k] * a[k], acc[1] += u[k] * u[k], acc[2] += v[k] * v[k];
     });
     if (!std::isfinite(a2 + u2 + v2)) throw diverged(step, "the internal force or the state");
+  };
+  auto accelerate = [&](std::int64_t step, double t) {
+    model.internal_force(u.data(), fint.data());
+    accelerate_from_force(step, t);
   };
   // Part 2: the history row (energies, then the supports' static reactions), checked before
   // it is kept; and the energy balance E - E0 - W against the largest energy and work so far.
@@ -187,14 +191,14 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
         const double t1 = wall_seconds();
         rep.changes.find_seconds += t1 - t0;
         if (due) {
-          const double before = model.energy(u.data());
-          changed += changes->apply();
-          released += before - model.energy(u.data());
+          const ChangesMade made = changes->apply(u.data(), fint.data());
+          changed += made.count;
+          released += made.released;
           if (changes->stable_step && dt_per_stable > 0.0) {
             const double lowered = dt_per_stable * changes->stable_step();
             if (lowered < dt) dt = lowered, ++rep.changes.step_reductions;
           }
-          accelerate(step, t);
+          accelerate_from_force(step, t);
           rep.changes.change_seconds += wall_seconds() - t1;
           ++rep.changes.changing_steps;
         }

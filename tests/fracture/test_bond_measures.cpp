@@ -131,22 +131,36 @@ TEST_CASE("criteria break strictly above their thresholds, and the instability c
 }
 
 TEST_CASE("the one-pass bond selection equals the per-bond arrays and does not depend on the thread count", "[fracture]") {
-  // What BondBreaking runs each step (lib/fracture/bond_selection.hpp) against the array form.
+  // What BondBreaking runs each step (lib/fracture/bond_selection.hpp), comparing squares
+  // (no root per bond), against the array form of the stretches and hourglass strains.
   const PointCloud c = test::lattice(2, 60, 0.3);
   BondGraph g(radius_families(c, 3.015));
   g.break_bond(0, g.col(g.begin(0)));  // a dead bond is never selected
   const auto u = test::random_field(c.size() * 2, 1e-2, 5);
+  std::vector<double> H(c.size() * 4);
+  for (std::size_t k = 0; k < H.size(); ++k) H[k] = 1e-2 * std::cos(0.37 * k);
   const BondStretch stretch{2, c.x.data(), u.data()};
-  std::vector<double> s;
+  const HourglassStrain hourglass{2, c.x.data(), u.data(), H.data()};
+  std::vector<double> s, h;
   bond_stretches(c, g, u.data(), s);
-  const double threshold = 0.5 * *std::max_element(s.begin(), s.end());
-  const auto expected = bonds_above(g, s, threshold);
-  REQUIRE(expected.size() > 10);
+  hourglass_strains(c, g, u.data(), H.data(), h);
+  const double s_top = *std::max_element(s.begin(), s.end()), h_top = *std::max_element(h.begin(), h.end());
+  const double s_c = 0.5 * s_top, t = 0.5 * h_top;
+  const auto by_stretch = bonds_above(g, s, s_c), by_hourglass = bonds_above(g, h, t);
+  REQUIRE(by_stretch.size() > 10);
+  REQUIRE(by_hourglass.size() > 10);
   const int before = omp_get_max_threads();
   for (const int threads : {1, 2, 3}) {
     omp_set_num_threads(threads);
-    CHECK(detail::live_bonds_above(g, threshold, stretch) == expected);
-    CHECK(detail::live_maximum(g, stretch) == *std::max_element(s.begin(), s.end()));
+    CHECK(detail::live_bonds_where(g, [&](std::size_t i, std::size_t j) { return stretch.exceeds(i, j, s_c); }) ==
+          by_stretch);
+    CHECK(detail::live_bonds_where(g, [&](std::size_t i, std::size_t j) { return hourglass.exceeds(i, j, t); }) ==
+          by_hourglass);
+    CHECK(detail::live_maximum(g, stretch) == s_top);
+    const double r = detail::live_maximum(g, [&](std::size_t i, std::size_t j) { return stretch.squared_ratio(i, j); });
+    CHECK(std::sqrt(r) - 1.0 == Approx(s_top).epsilon(1e-12));
+    const double q = detail::live_maximum(g, [&](std::size_t i, std::size_t j) { return hourglass.squared(i, j); });
+    CHECK(std::sqrt(q) == Approx(h_top).epsilon(1e-14));
   }
   omp_set_num_threads(before);
 }

@@ -12,6 +12,7 @@
 #include "../support/refresh.hpp"
 #include "../support/clouds.hpp"
 #include "perinom/geometry/surface.hpp"
+#include "perinom/materials/material_point.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/neighbors/search.hpp"
 
@@ -86,6 +87,55 @@ TEST_CASE("a model whose bonds break equals a model built without them", "[model
           CHECK(rows_difference(rows_of(model), rows_of(built)) <= tolerance);
           CHECK(relative(model.stiffness_row_sums(), built.stiffness_row_sums()) <= tolerance);
         }
+}
+
+TEST_CASE("breaking at a state updates its force and energy as if both were taken anew", "[models][refresh]") {
+  // break_bonds(bonds, u, f): f, the force at u, becomes the changed model's force there, and
+  // `released` the energy difference. The classical formulation of order 1 updates them on
+  // the refreshed rows only (each row's share subtracted before and added after); the other
+  // cases evaluate them anew. A particle that loses its whole family is among the breaks, and
+  // so is a Drucker-Prager law that yields (its trial states follow the rows' new H).
+  using Storage = StabilizationStorage;
+  for (const int d : {2, 3})
+    for (const Formulation form : {Formulation::classical, Formulation::improved})
+      for (const int order : {1, 2})
+        for (const Storage storage : {Storage::fused, Storage::assembled, Storage::matrix_free})
+          for (const bool plastic : {false, true}) {
+            if (order == 2 && storage != Storage::matrix_free) continue;
+            const int side = d == 2 ? 10 : 6;
+            const PointCloud cloud = test::lattice(d, side, 0.3);
+            const Families f = radius_families(cloud, 2.515);
+            const Surface surface = find_surface(box(d, side), cloud, 2.0);
+            CorrespondenceOptions o{Influence::inverse_square, 0.5, form};
+            o.stabilization_storage = storage;
+            o.operator_order = order;
+            if (plastic) {
+              DruckerPrager dp = seed_biaxial_test(5).material;
+              dp.cohesion = 20e3;
+              o.plasticity = dp;
+            }
+            CorrespondenceModel model(cloud, f, material(d), o, surface);
+            std::vector<test::Bond> breaks = test::random_bonds(f, cloud.size() / 8, 17);
+            const std::size_t p = cloud.size() / 2;
+            for (Offset k = f.begin(p); k < f.end(p); ++k) breaks.emplace_back(static_cast<ParticleId>(p), f.neighbors[k]);
+            const auto u = test::random_field(model.dofs(), plastic ? 1e-2 : 1e-4, 21);
+            std::vector<double> updated(u.size()), anew(u.size()), H(u.size() * d);
+            model.internal_force(u.data(), updated.data());
+            const double before = model.energy(u.data());
+            const BondBreaks report = model.break_bonds(breaks, u.data(), updated.data());
+            INFO("dim " << d << " order " << order << " formulation " << int(form) << " storage " << int(storage)
+                        << (plastic ? " plastic" : " elastic") << ": " << report.broken << " bonds broken, "
+                        << report.rows.size() << " rows");
+            REQUIRE(report.detached == std::vector<ParticleId>{static_cast<ParticleId>(p)});
+            // last_gradient() is grad u at u on the changed model.
+            model.gradient(u.data(), H.data());
+            CHECK(relative(std::vector<double>(model.last_gradient(), model.last_gradient() + H.size()), H) <= 1e-12);
+            const double after = model.energy(u.data());
+            model.internal_force(u.data(), anew.data());
+            CHECK(relative(updated, anew) <= 1e-12);
+            CHECK(report.released != 0.0);  // of either sign: a row's K_i^-1 grows as it loses bonds
+            CHECK(std::abs(report.released - (before - after)) <= 1e-12 * before);
+          }
 }
 
 TEST_CASE("a particle whose bonds all break is detached: no stress, no force, no NaN", "[models][refresh]") {

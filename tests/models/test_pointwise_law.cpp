@@ -85,7 +85,7 @@ TEST_CASE("elastic points answer with LinearElastic's stress, energy, tangent an
     const auto H = gradients(dim, n, 1e-3);
     const auto P = stresses(l, H);
     std::vector<double> psi(n), sigma(n * 9), C;
-    l.energies(H.data(), psi.data());
+    l.energies(0, n, H.data(), psi.data());
     l.cauchy(H.data(), sigma.data());
     REQUIRE(l.tangents(H.data(), C) == 0);
     std::vector<double> Ce(d2 * d2);
@@ -131,7 +131,7 @@ void check_per_particle(int dim, Law& direct, PointwiseLaw& law, PlasticPoints& 
     for (int k = 0; k < d4; ++k) CHECK(C[i * d4 + k] == Cd[k]);
     for (int k = 0; k < 9; ++k) CHECK(sigma[i * 9 + k] == sd[k]);
   }
-  law.energies(H.data(), psi.data());
+  law.energies(0, n, H.data(), psi.data());
   for (std::size_t i = 0; i < n; ++i) CHECK(psi[i] == direct_points.stored_energy(i));
   law.commit(), direct_points.commit();
   for (std::size_t i = 0; i < n; ++i) {
@@ -230,7 +230,7 @@ TEST_CASE("a law with history changes its committed states only at commit", "[mo
   std::vector<double> xi, sigma_before(n * 9), sigma_after(n * 9), psi(n);
   // Stresses, energies, tangents and Cauchy stresses evaluate; none commits.
   stresses(law, H);
-  law.energies(H.data(), psi.data());
+  law.energies(0, n, H.data(), psi.data());
   std::vector<double> C;
   law.tangents(H.data(), C);
   law.cauchy(H.data(), sigma_before.data());
@@ -276,9 +276,9 @@ class TwiceElastic final : public PointwiseLaw {
     const std::size_t d2 = std::size_t(dim()) * dim();
     for (std::size_t k = begin * d2; k < end * d2; ++k) P[k] *= 2.0;
   }
-  void energies(const double* H, double* psi) override {
-    inner_.energies(H, psi);
-    for (std::size_t i = 0; i < size(); ++i) psi[i] *= 2.0;
+  void energies(std::size_t begin, std::size_t end, const double* H, double* psi) override {
+    inner_.energies(begin, end, H, psi);
+    for (std::size_t i = begin; i < end; ++i) psi[i] *= 2.0;
   }
   std::size_t tangents(const double* H, std::vector<double>& C) const override {
     const std::size_t stride = inner_.tangents(H, C);

@@ -36,10 +36,14 @@ class BondBreaking {
   /// The bonds due at u (N x d), kept for apply(); returns how many (a bond found in both
   /// directions counts twice here, once in apply()). H: grad u at u when the caller has it
   /// (CorrespondenceModel::last_gradient() right after the force at u), else nullptr and the
-  /// instability criterion takes it from G.
+  /// instability and stress criteria take it from G.
   std::size_t find(const double* u, const double* H = nullptr);
   /// Breaks the bonds find() kept; returns the bonds that died (pairs, once each).
   std::size_t apply();
+  /// The same at a state u whose internal force f the caller holds: f becomes the changed
+  /// model's force at u, updated on the refreshed rows (CorrespondenceModel::break_bonds);
+  /// also the strain energy released at u. Returns the bonds that died, and that energy.
+  BondBreaks apply(const double* u, double* f);
 
   /// The model's stable time step now, 2 / sqrt(max_i sum_j |K_ij| / m_i) (Gershgorin, as
   /// solve_verlet's): the first call sums every stiffness row; after that each apply() sums
@@ -63,6 +67,8 @@ class BondBreaking {
   std::vector<char> held_;  // per particle: in a no-fail zone (empty: none)
   std::vector<double> row_sums_, mass_;  // per dof, once stable_time_step() has been asked
   std::vector<double> H_, sigma_, sigma1_;  // workspaces: grad u, stresses, sigma1
+  /// After break_bonds: the counts, and the stiffness rows the breaks changed summed anew.
+  std::size_t account(const BondBreaks& b);
   std::size_t broken_ = 0, detached_ = 0;
 };
 

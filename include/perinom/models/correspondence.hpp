@@ -84,6 +84,7 @@ struct BondBreaks {
   std::size_t broken = 0;             ///< bonds that died (a pair counts once)
   std::vector<ParticleId> rows;       ///< the rows of G (and S) refreshed
   std::vector<ParticleId> detached;   ///< every particle detached so far (no stress, no force)
+  double released = 0.0;              ///< break_bonds at a state u: the strain energy released there (J)
 };
 
 class CorrespondenceModel : public TangentModel, public ModelHistory {
@@ -154,6 +155,16 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// and for a stabilization stored without the operator it came from (operator order 2 at
   /// the assembled level: stabilization_storage matrix_free keeps the fit and refreshes).
   BondBreaks break_bonds(const std::vector<std::pair<ParticleId, ParticleId>>& bonds);
+  /// The same at a state u whose internal force f the caller holds (internal_force(u, f) the
+  /// last force or energy evaluated): f becomes the changed model's force at u, and
+  /// `released` the strain energy the breaks released there. Each refreshed row i owns a
+  /// share of the energy, V_i psi(H_i) plus its stabilization row (hourglass_energy.hpp),
+  /// and of the force, that share's derivative; nothing else changes. So with the classical
+  /// formulation of operator order 1 and float64 weights (what fracture scenes run) the
+  /// shares of the refreshed rows are subtracted before and added after: a breaking step
+  /// costs its rows, not another force and two energies. Otherwise both are evaluated anew.
+  /// last_gradient() stays grad u at u.
+  BondBreaks break_bonds(const std::vector<std::pair<ParticleId, ParticleId>>& bonds, const double* u, double* f);
 
   const NonlocalOperator& G() const { return G_; }
   /// 1 or 2: the order of the fit G comes from (CorrespondenceOptions::operator_order).
@@ -198,6 +209,7 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
 
  private:
   double c_hg_ = 0.0;       // the stabilization coefficient asked for (for the plan)
+  double modulus_ = 0.0;    // C_hg 2 mu: c_i = modulus / tr K_i
   bool fracture_fields_ = false;  // CorrespondenceOptions::fracture_fields
   std::vector<double> x_;   // the particles' positions (surface stress at the facets)
   int dim_;
@@ -221,6 +233,11 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// Replaces G by G~ (consistent_gradient.hpp) after keeping the trace of the facets.
   void make_consistent(const PointCloud& cloud, const Families& families, const BondWeights& weights,
                        BoundaryFacets& facets, WeightPrecision precision);
+  /// Row i's share of the strain energy at u, with f += sign its derivative (H_ row i set
+  /// from G first): the row update of break_bonds (correspondence_breaks.cpp).
+  double row_share(std::size_t i, const double* u, double sign, double* f);
+  /// break_bonds' exceptions, thrown before anything changes.
+  void check_breakable(const std::vector<std::pair<ParticleId, ParticleId>>& bonds) const;
   void visit_rows(const PointwiseTangent& C,
                   const std::function<void(std::size_t, const std::vector<ParticleId>&,
                                            const std::vector<double>&)>& visit,

@@ -16,7 +16,7 @@ class ElasticPoints final : public PointwiseLaw {
   std::size_t size() const override { return particles_; }
   bool has_history() const override { return false; }
   void stresses(std::size_t begin, std::size_t end, const double* H, double* P) override;
-  void energies(const double* H, double* psi) override;
+  void energies(std::size_t begin, std::size_t end, const double* H, double* psi) override;
   std::size_t tangents(const double* H, std::vector<double>& C) const override;
   void cauchy(const double* H, double* sigma) const override;
   void commit() override {}

@@ -17,10 +17,9 @@ class PerParticleLaw : public PointwiseLaw {
     const std::size_t d2 = dim2();
     for (std::size_t i = begin; i < end; ++i) self().stress(i, H + i * d2, P + i * d2);
   }
-  void energies(const double* H, double* psi) override {
-    const std::size_t d2 = dim2(), n = size();
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
+  void energies(std::size_t begin, std::size_t end, const double* H, double* psi) override {
+    const std::size_t d2 = dim2();
+    for (std::size_t i = begin; i < end; ++i) {
       double P[9];
       self().stress(i, H + i * d2, P);  // keeps the trial state whose stored energy this is
       psi[i] = self().stored_energy(i);

@@ -44,10 +44,11 @@ class PointwiseLaw {
   /// concurrently for disjoint ranges (the model splits the particles into blocks: one call
   /// per block, not per particle, on the hot path).
   virtual void stresses(std::size_t begin, std::size_t end, const double* H, double* P) = 0;
-  /// psi_i (J/m^3), the stored energy density at H_i, for every particle (psi: N values). A
-  /// law with history evaluates (and keeps) the trial states first: plastic work is
+  /// psi_i (J/m^3), the stored energy density at H_i, for the particles i in [begin, end)
+  /// (H and psi the whole arrays, as for stresses; concurrent calls for disjoint ranges are
+  /// safe). A law with history evaluates (and keeps) the trial states first: plastic work is
   /// dissipated, not stored. Deterministic: the model sums V_i psi_i in a fixed order.
-  virtual void energies(const double* H, double* psi) = 0;
+  virtual void energies(std::size_t begin, std::size_t end, const double* H, double* psi) = 0;
   /// The consistent tangents dP/dH at H from the committed states, into C; returns the
   /// stride between particles: 0 when one d^4 block serves every particle (C then holds d^4
   /// values and H is not read), d^4 otherwise (C: N x d^4).

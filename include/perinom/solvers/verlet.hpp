@@ -43,17 +43,23 @@ struct VerletState {
   std::vector<double> history;      ///< the history rows so far (History::values)
 };
 
+/// What ModelChanges::apply made: how many changes, and the strain energy they released.
+struct ChangesMade {
+  std::size_t count = 0;
+  double released = 0.0;  ///< J, at the state the changes were made at
+};
+
 /// Irreversible changes of the model during a run (bonds that break: fracture/bond_breaking.hpp).
 /// Every `every` steps, at the end of the step (u and v updated on the model as it was),
-/// find(u) counts those due at u; when any are, the solver takes the strain energy, apply()s
-/// them (returning how many it made), takes the energy again (the difference is the energy
-/// the changes release, a history column, so that kinetic + strain + released - external
-/// work stays at its initial value) and the force anew, which the next step starts from. The
-/// stable step follows the changes when stable_step is given (below).
+/// find(u) counts those due at u; when any are, apply(u, f) makes them, with f the internal
+/// force at u the step took last, and leaves in f the changed model's force at u, which the
+/// next step starts from. It returns the strain energy the changes released at u (a history
+/// column, so that kinetic + strain + released - external work stays at its initial value).
+/// The stable step follows the changes when stable_step is given (below).
 struct ModelChanges {
   /// Called at the end of a step, at the u whose internal force the step evaluated last.
   std::function<std::size_t(const double* u)> find;
-  std::function<std::size_t()> apply;
+  std::function<ChangesMade(const double* u, double* f)> apply;
   std::int64_t every = 1;
   /// Optional: the model's stable time step now (called once before the first step, in place
   /// of stable_time_step(model), and after each apply()). The run keeps the ratio of its
