@@ -57,11 +57,15 @@ std::size_t BondBreaking::find(const double* u, const double* H) {
     }
     // Instability, one pass a step: the largest stretch until armed (and at that step the
     // largest hourglass strain, once; none exceeds it then), afterwards the hourglass strains.
+    // Bonds that never break (no-fail zones) neither arm it nor set s_hg_max.
+    auto breakable = [&](std::size_t i, std::size_t j) { return held_.empty() || !(held_[i] || held_[j]); };
     if (!instability_->armed()) {
-      const double ratio = live_maximum(g, [&](std::size_t i, std::size_t j) { return stretch.squared_ratio(i, j); });
+      const double ratio = live_maximum(
+          g, [&](std::size_t i, std::size_t j) { return breakable(i, j) ? stretch.squared_ratio(i, j) : 0.0; });
       instability_->arm(std::sqrt(ratio) - 1.0, [&] {
         const HourglassStrain hourglass{dim, x, u, gradient()};
-        return std::sqrt(live_maximum(g, [&](std::size_t i, std::size_t j) { return hourglass.squared(i, j); }));
+        return std::sqrt(
+            live_maximum(g, [&](std::size_t i, std::size_t j) { return breakable(i, j) ? hourglass.squared(i, j) : 0.0; }));
       });
       return;
     }

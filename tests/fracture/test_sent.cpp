@@ -134,3 +134,26 @@ TEST_CASE("the stable time step kept through breaks equals the one summed anew o
   CHECK(after == Approx(stable_time_step(model)).epsilon(1e-14));
   CHECK(after < before);
 }
+
+TEST_CASE("bonds in a no-fail zone never break and do not arm the instability criterion", "[fracture][sent]") {
+  // One particle pulled 5% of a spacing off its place: its bonds are the only ones stretched.
+  // Held, they neither break (stretch criterion) nor arm the instability criterion (whose
+  // s_hg_max would otherwise come from a place where nothing may break).
+  const Scene scene = read_scene(std::string(PERINOM_SOURCE_DIR) + "/examples/sent.yaml");
+  Problem p = build_problem(scene);
+  auto& model = p.as<CorrespondenceModel>();
+  const ParticleId q = static_cast<ParticleId>(p.cloud.size() / 3);
+  std::vector<double> u(p.physics().dofs(), 0.0);
+  u[q * 2] = 0.05 * 5e-5;
+  BondBreaking free(model, p.cloud, DamageCriterion::instability, 0.02);
+  BondBreaking held(model, p.cloud, DamageCriterion::instability, 0.02);
+  held.hold({q});
+  free.find(u.data());
+  held.find(u.data());
+  CHECK(free.hourglass_threshold() > 0.0);
+  CHECK(held.hourglass_threshold() == 0.0);
+  BondBreaking stretch(model, p.cloud, DamageCriterion::stretch, 0.02);
+  CHECK(stretch.find(u.data()) > 0);
+  stretch.hold({q});
+  CHECK(stretch.find(u.data()) == 0);
+}

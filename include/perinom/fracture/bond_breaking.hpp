@@ -30,7 +30,8 @@ class BondBreaking {
   BondBreaking(CorrespondenceModel& model, const PointCloud& cloud, DamageCriterion criterion, double parameter);
 
   /// A no-fail zone (the peers' device at grips and impact points): bonds with an end at one
-  /// of these particles never break. Adds to the zones given before.
+  /// of these particles never break, and the instability criterion neither arms on their
+  /// stretch nor takes s_hg_max from them. Adds to the zones given before.
   void hold(const std::vector<ParticleId>& particles);
 
   /// The bonds due at u (N x d), kept for apply(); returns how many (a bond found in both
