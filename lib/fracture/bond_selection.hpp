@@ -35,9 +35,15 @@ std::vector<BondPair> live_bonds_where(const BondGraph& g, const Due& due) {
     found.resize(static_cast<std::size_t>(omp_get_num_threads()));
     std::vector<BondPair>& mine = found[static_cast<std::size_t>(omp_get_thread_num())];
 #pragma omp for schedule(static)
-    for (std::size_t i = 0; i < g.rows(); ++i)
+    for (std::size_t i = 0; i < g.rows(); ++i) {
+      // First whether any bond of the row is due, in a loop without branches or stores that
+      // the compiler can vectorize; then, rarely, the row again to keep them.
+      int any = 0;
+      for (Offset k = g.begin(i); k < g.end(i); ++k) any |= int(g.alive(k)) & int(due(i, static_cast<std::size_t>(g.col(k))));
+      if (!any) continue;
       for (Offset k = g.begin(i); k < g.end(i); ++k)
         if (g.alive(k) && due(i, static_cast<std::size_t>(g.col(k)))) mine.emplace_back(static_cast<ParticleId>(i), g.col(k));
+    }
   }
   std::vector<BondPair> out;
   for (auto& f : found) out.insert(out.end(), f.begin(), f.end());
