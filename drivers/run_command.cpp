@@ -264,6 +264,13 @@ int run(const Options& opt) {
       std::printf("perinom: note: broken bonds lowered the stable time step %lld time(s); the run kept its ratio to "
                   "it and ended at dt = %.4g s (summary.json solver.fracture.final_time_step)\n",
                   static_cast<long long>(c.step_reductions), c.final_dt);
+    if (c.armed_step >= 0) {
+      f["armed_step"] = static_cast<long long>(c.armed_step);
+      f["hourglass_threshold"] = c.hourglass_threshold;
+      std::printf("perinom: note: the instability criterion armed at step %lld (a bond reached s_max); from then on "
+                  "bonds whose hourglass strain exceeds s_hg_max = %.4g break (summary.json solver.fracture.armed_step)\n",
+                  static_cast<long long>(c.armed_step), c.hourglass_threshold);
+    }
     f["intact_step_seconds"] = intact;
     f["find_seconds_per_step"] = find;
     f["break_seconds_per_breaking_step"] = change;

@@ -38,6 +38,7 @@ std::size_t BondBreaking::find(const double* u, const double* H) {
   const int d = cloud_->dim;
   const double* x = cloud_->x.data();
   due_.clear();
+  ++finds_;
   auto gradient = [&] {  // from G only when the caller has none, and only when needed
     if (!H) {
       H_.resize(cloud_->size() * d * d);
@@ -62,11 +63,12 @@ std::size_t BondBreaking::find(const double* u, const double* H) {
     if (!instability_->armed()) {
       const double ratio = live_maximum(
           g, [&](std::size_t i, std::size_t j) { return breakable(i, j) ? stretch.squared_ratio(i, j) : 0.0; });
-      instability_->arm(std::sqrt(ratio) - 1.0, [&] {
+      const bool armed = instability_->arm(std::sqrt(ratio) - 1.0, [&] {
         const HourglassStrain hourglass{dim, x, u, gradient()};
         return std::sqrt(
             live_maximum(g, [&](std::size_t i, std::size_t j) { return breakable(i, j) ? hourglass.squared(i, j) : 0.0; }));
       });
+      if (armed) armed_find_ = finds_;
       return;
     }
     const HourglassStrain hourglass{dim, x, u, gradient()};

@@ -120,6 +120,9 @@ std::vector<SolverEntry> make_solvers() {
     if (breaking) {
       r.changes.broken = static_cast<std::int64_t>(breaking->broken());
       r.changes.detached = static_cast<std::int64_t>(p.as<CorrespondenceModel>().G().detached().size());
+      // find() runs every `every` steps from step `every`: its k-th call is at step k every.
+      if (breaking->armed_at_find() > 0) r.changes.armed_step = breaking->armed_at_find() * p.scene.damage->every;
+      r.changes.hourglass_threshold = breaking->hourglass_threshold();
     }
     return r;
   };

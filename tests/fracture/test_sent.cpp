@@ -80,6 +80,14 @@ TEST_CASE("SENT (coarse): the precrack cuts the notch and the crack crosses to t
   // line, where a face and the crack leave it too little of its family (one, at the right
   // edge, at this resolution).
   CHECK(double(r.changes.broken) == last[cols - 2]);
+  // The instability criterion armed at a step before any bond broke (none breaks at arming).
+  REQUIRE(r.changes.armed_step > 0);
+  CHECK(r.changes.hourglass_threshold > 0.0);
+  for (std::size_t row = 0; row * cols < h.values.size(); ++row)
+    if (h.values[row * cols + cols - 2] > 0.0) {
+      CHECK(h.values[row * cols] > double(r.changes.armed_step));
+      break;
+    }
   const auto& detached = p.as<CorrespondenceModel>().G().detached();
   CHECK(r.changes.detached == static_cast<std::int64_t>(detached.size()));
   CHECK(detached.size() <= 2);
@@ -152,6 +160,8 @@ TEST_CASE("bonds in a no-fail zone never break and do not arm the instability cr
   held.find(u.data());
   CHECK(free.hourglass_threshold() > 0.0);
   CHECK(held.hourglass_threshold() == 0.0);
+  CHECK(free.armed_at_find() == 1);
+  CHECK(held.armed_at_find() == -1);
   BondBreaking stretch(model, p.cloud, DamageCriterion::stretch, 0.02);
   CHECK(stretch.find(u.data()) > 0);
   stretch.hold({q});

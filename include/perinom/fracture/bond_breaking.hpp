@@ -4,6 +4,7 @@
 /// (CorrespondenceModel::break_bonds: the touched rows of G and S refreshed, particles whose
 /// family no longer spans R^d detached). Irreversible.
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +58,8 @@ class BondBreaking {
   std::size_t detached() const { return detached_; }
   /// The instability criterion's s_hg_max once armed (0 otherwise, and for other criteria).
   double hourglass_threshold() const { return instability_ ? instability_->threshold() : 0.0; }
+  /// The instability criterion: the find() call (counted from 1) that armed it, or -1.
+  std::int64_t armed_at_find() const { return armed_find_; }
 
  private:
   CorrespondenceModel* model_;
@@ -71,6 +74,7 @@ class BondBreaking {
   /// After break_bonds: the counts, and the stiffness rows the breaks changed summed anew.
   std::size_t account(const BondBreaks& b);
   std::size_t broken_ = 0, detached_ = 0;
+  std::int64_t finds_ = 0, armed_find_ = -1;
 };
 
 }  // namespace perinom

@@ -33,6 +33,7 @@ inline double hourglass_z2(Dim d, const double* x, const double* u, const double
   for (int a = 0; a < d; ++a) z2 += z[a] * z[a];
   return z2;
 }
+
 /// psi_i = 1/2 (modulus / tr K_i) sum_j w_ij V_j |z_ij|^2 (J/m^3) over the live bonds, with
 /// z_ij = u_j - u_i - H_i xi_ij and H = grad u from G (first order, built from a fit: its
 /// positions and w V); 0 at a detached particle. sum_i V_i psi_i is the energy W_s of the

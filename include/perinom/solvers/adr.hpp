@@ -34,8 +34,8 @@ struct SolveReport {
   std::int64_t diverged_at = -1;
   History history;
   /// Verlet with ModelChanges (breaking bonds): the wall time of the step loop, the part of it
-  /// spent looking for changes (find), the part spent making them (apply, the two energies
-  /// and the force taken anew), and the steps that made any.
+  /// spent looking for changes (find), the part spent making them (apply, with the force and
+  /// the released energy it updates, and the stable step), and the steps that made any.
   struct Changes {
     std::int64_t changing_steps = 0;
     double loop_seconds = 0.0, find_seconds = 0.0, change_seconds = 0.0;
@@ -43,6 +43,10 @@ struct SolveReport {
     std::int64_t detached = 0;  ///< particles detached so far, precracks included (likewise)
     std::int64_t step_reductions = 0;  ///< times the changes lowered the time step (Verlet)
     double final_dt = 0.0;             ///< the time step at the end (Verlet with changes)
+    /// The instability criterion (set by whoever breaks bonds): the step it armed at (-1: not
+    /// armed, or another criterion) and the s_hg_max it fixed then.
+    std::int64_t armed_step = -1;
+    double hourglass_threshold = 0.0;
   };
   Changes changes;
 };
