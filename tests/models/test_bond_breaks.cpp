@@ -49,44 +49,68 @@ constexpr double tolerance = 1e-13;
 
 }  // namespace
 
-TEST_CASE("a model whose bonds break equals a model built without them", "[models][refresh]") {
+namespace {
+
+/// One case of the refresh tests: a small lattice, radius or nearest-neighbour families.
+struct Case {
+  int d;
+  bool knn;
+  PointCloud cloud;
+  Families families;
+  Surface surface;
+  CorrespondenceOptions options;
+};
+
+/// Runs body(case) over dimension, families, formulation, operator order and stabilization
+/// storage: fused needs symmetric families (radius), and order 2 refreshes at the matrix-free
+/// level only (the assembled one drops its fit).
+template <class Body>
+void for_each_case(Body&& body) {
   using Storage = StabilizationStorage;
   for (const int d : {2, 3})
     for (const bool knn : {false, true})
       for (const Formulation form : {Formulation::classical, Formulation::improved})
         for (const int order : {1, 2})
-        for (const Storage storage : {Storage::fused, Storage::assembled, Storage::matrix_free}) {
-          if (knn && storage == Storage::fused) continue;  // fused needs symmetric families
-          // Order 2 refreshes at the matrix-free level (the assembled one drops its fit).
-          if (order == 2 && storage != Storage::matrix_free) continue;
-          const int side = d == 2 ? 10 : 6;
-          const PointCloud cloud = test::lattice(d, side, 0.3);
-          const Families f = knn ? knn_families(cloud, d == 2 ? 16 : 36) : radius_families(cloud, 2.515);
-          const Surface surface = find_surface(box(d, side), cloud, 2.0);
-          CorrespondenceOptions o{Influence::inverse_square, 0.5, form};
-          o.stabilization_storage = storage;
-          o.operator_order = order;
-          CorrespondenceModel model(cloud, f, material(d), o, surface);
-          const std::vector<test::Bond> breaks = test::random_bonds(f, cloud.size() / 8, 17);
-          const BondBreaks report = model.break_bonds(breaks);
-          INFO("dim " << d << (knn ? " knn" : " radius") << " order " << order << " formulation " << int(form) << " storage "
-                      << int(storage) << ": " << report.broken << " bonds broken, " << report.rows.size() << " rows");
-          REQUIRE(report.broken == breaks.size());
-          REQUIRE(report.detached.empty());
-          // Breaking again changes nothing.
-          CHECK(model.break_bonds(breaks).broken == 0);
+          for (const Storage storage : {Storage::fused, Storage::assembled, Storage::matrix_free}) {
+            if (knn && storage == Storage::fused) continue;
+            if (order == 2 && storage != Storage::matrix_free) continue;
+            const int side = d == 2 ? 10 : 6;
+            Case c{d, knn, test::lattice(d, side, 0.3), {}, {}, {Influence::inverse_square, 0.5, form}};
+            c.families = knn ? knn_families(c.cloud, d == 2 ? 16 : 36) : radius_families(c.cloud, 2.515);
+            c.surface = find_surface(box(d, side), c.cloud, 2.0);
+            c.options.stabilization_storage = storage;
+            c.options.operator_order = order;
+            INFO("dim " << d << (knn ? " knn" : " radius") << " order " << order << " formulation " << int(form)
+                        << " storage " << int(storage));
+            body(c);
+          }
+}
 
-          const Families f2 = test::without(f, std::set<test::Bond>(breaks.begin(), breaks.end()));
-          CorrespondenceModel built(cloud, f2, material(d), o, surface);
-          const auto u = test::random_field(model.dofs(), 1e-4, 21);
-          std::vector<double> fa(u.size()), fb(u.size());
-          model.internal_force(u.data(), fa.data());
-          built.internal_force(u.data(), fb.data());
-          CHECK(relative(fa, fb) <= tolerance);
-          CHECK(std::abs(model.energy(u.data()) - built.energy(u.data())) <= tolerance * built.energy(u.data()));
-          CHECK(rows_difference(rows_of(model), rows_of(built)) <= tolerance);
-          CHECK(relative(model.stiffness_row_sums(), built.stiffness_row_sums()) <= tolerance);
-        }
+}  // namespace
+
+TEST_CASE("a model whose bonds break equals a model built without them", "[models][refresh]") {
+  for_each_case([](const Case& c) {
+    const Families& f = c.families;
+    CorrespondenceModel model(c.cloud, f, material(c.d), c.options, c.surface);
+    const std::vector<test::Bond> breaks = test::random_bonds(f, c.cloud.size() / 8, 17);
+    const BondBreaks report = model.break_bonds(breaks);
+    INFO(report.broken << " bonds broken, " << report.rows.size() << " rows");
+    REQUIRE(report.broken == breaks.size());
+    REQUIRE(report.detached.empty());
+    // Breaking again changes nothing.
+    CHECK(model.break_bonds(breaks).broken == 0);
+
+    const Families f2 = test::without(f, std::set<test::Bond>(breaks.begin(), breaks.end()));
+    CorrespondenceModel built(c.cloud, f2, material(c.d), c.options, c.surface);
+    const auto u = test::random_field(model.dofs(), 1e-4, 21);
+    std::vector<double> fa(u.size()), fb(u.size());
+    model.internal_force(u.data(), fa.data());
+    built.internal_force(u.data(), fb.data());
+    CHECK(relative(fa, fb) <= tolerance);
+    CHECK(std::abs(model.energy(u.data()) - built.energy(u.data())) <= tolerance * built.energy(u.data()));
+    CHECK(rows_difference(rows_of(model), rows_of(built)) <= tolerance);
+    CHECK(relative(model.stiffness_row_sums(), built.stiffness_row_sums()) <= tolerance);
+  });
 }
 
 TEST_CASE("breaking at a state updates its force and energy as if both were taken anew", "[models][refresh]") {
@@ -95,50 +119,40 @@ TEST_CASE("breaking at a state updates its force and energy as if both were take
   // the refreshed rows only (each row's share subtracted before and added after); the other
   // cases evaluate them anew. A particle that loses its whole family is among the breaks, and
   // so is a Drucker-Prager law that yields (its trial states follow the rows' new H).
-  using Storage = StabilizationStorage;
-  for (const int d : {2, 3})
-    for (const bool knn : {false, true})
-    for (const Formulation form : {Formulation::classical, Formulation::improved})
-      for (const int order : {1, 2})
-        for (const Storage storage : {Storage::fused, Storage::assembled, Storage::matrix_free})
-          for (const bool plastic : {false, true}) {
-            if (order == 2 && storage != Storage::matrix_free) continue;
-            // Nearest-neighbour families (not symmetric: no fused level) for the row update only.
-            if (knn && (storage == Storage::fused || form != Formulation::classical || order != 1)) continue;
-            const int side = d == 2 ? 10 : 6;
-            const PointCloud cloud = test::lattice(d, side, 0.3);
-            const Families f = knn ? knn_families(cloud, d == 2 ? 16 : 36) : radius_families(cloud, 2.515);
-            const Surface surface = find_surface(box(d, side), cloud, 2.0);
-            CorrespondenceOptions o{Influence::inverse_square, 0.5, form};
-            o.stabilization_storage = storage;
-            o.operator_order = order;
-            if (plastic) {
-              DruckerPrager dp = seed_biaxial_test(5).material;
-              dp.cohesion = 20e3;
-              o.plasticity = dp;
-            }
-            CorrespondenceModel model(cloud, f, material(d), o, surface);
-            std::vector<test::Bond> breaks = test::random_bonds(f, cloud.size() / 8, 17);
-            const std::size_t p = cloud.size() / 2;
-            for (Offset k = f.begin(p); k < f.end(p); ++k) breaks.emplace_back(static_cast<ParticleId>(p), f.neighbors[k]);
-            const auto u = test::random_field(model.dofs(), plastic ? 1e-2 : 1e-4, 21);
-            std::vector<double> updated(u.size()), anew(u.size()), H(u.size() * d);
-            model.internal_force(u.data(), updated.data());
-            const double before = model.energy(u.data());
-            const BondBreaks report = model.break_bonds(breaks, u.data(), updated.data());
-            INFO("dim " << d << (knn ? " knn" : " radius") << " order " << order << " formulation " << int(form)
-                        << " storage " << int(storage) << (plastic ? " plastic" : " elastic") << ": " << report.broken << " bonds broken, "
-                        << report.rows.size() << " rows");
-            REQUIRE(report.detached == std::vector<ParticleId>{static_cast<ParticleId>(p)});
-            // last_gradient() is grad u at u on the changed model.
-            model.gradient(u.data(), H.data());
-            CHECK(relative(std::vector<double>(model.last_gradient(), model.last_gradient() + H.size()), H) <= 1e-12);
-            const double after = model.energy(u.data());
-            model.internal_force(u.data(), anew.data());
-            CHECK(relative(updated, anew) <= 1e-12);
-            CHECK(report.released != 0.0);  // of either sign: a row's K_i^-1 grows as it loses bonds
-            CHECK(std::abs(report.released - (before - after)) <= 1e-12 * before);
-          }
+  for_each_case([](const Case& c) {
+    const int d = c.d;
+    const Families& f = c.families;
+    // Nearest-neighbour families for the row update only.
+    if (c.knn && (c.options.formulation != Formulation::classical || c.options.operator_order != 1)) return;
+    for (const bool plastic : {false, true}) {
+      CorrespondenceOptions o = c.options;
+      if (plastic) {
+        DruckerPrager dp = seed_biaxial_test(5).material;
+        dp.cohesion = 20e3;
+        o.plasticity = dp;
+      }
+      CorrespondenceModel model(c.cloud, f, material(d), o, c.surface);
+      std::vector<test::Bond> breaks = test::random_bonds(f, c.cloud.size() / 8, 17);
+      const std::size_t p = c.cloud.size() / 2;
+      for (Offset k = f.begin(p); k < f.end(p); ++k) breaks.emplace_back(static_cast<ParticleId>(p), f.neighbors[k]);
+      const auto u = test::random_field(model.dofs(), plastic ? 1e-2 : 1e-4, 21);
+      std::vector<double> updated(u.size()), anew(u.size()), H(u.size() * d);
+      model.internal_force(u.data(), updated.data());
+      const double before = model.energy(u.data());
+      const BondBreaks report = model.break_bonds(breaks, u.data(), updated.data());
+      INFO((plastic ? "plastic" : "elastic") << ": " << report.broken << " bonds broken, " << report.rows.size()
+                                             << " rows");
+      REQUIRE(report.detached == std::vector<ParticleId>{static_cast<ParticleId>(p)});
+      // last_gradient() is grad u at u on the changed model.
+      model.gradient(u.data(), H.data());
+      CHECK(relative(std::vector<double>(model.last_gradient(), model.last_gradient() + H.size()), H) <= 1e-12);
+      const double after = model.energy(u.data());
+      model.internal_force(u.data(), anew.data());
+      CHECK(relative(updated, anew) <= 1e-12);
+      CHECK(report.released != 0.0);  // of either sign: a row's K_i^-1 grows as it loses bonds
+      CHECK(std::abs(report.released - (before - after)) <= 1e-12 * before);
+    }
+  });
 }
 
 TEST_CASE("a particle whose bonds all break is detached: no stress, no force, no NaN", "[models][refresh]") {
