@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "bond_selection.hpp"
+#include "row_screen.hpp"
 #include "perinom/fracture/bond_measures.hpp"
 #include "perinom/materials/measures.hpp"
 
@@ -24,6 +25,40 @@ BondBreaking::BondBreaking(CorrespondenceModel& model, const PointCloud& cloud, 
     : model_(&model), cloud_(&cloud), criterion_(criterion), parameter_(parameter) {
   if (!(parameter > 0.0)) throw std::invalid_argument("BondBreaking: the criterion's parameter must be positive");
   if (criterion == DamageCriterion::instability) instability_.emplace(parameter);
+  screen(true);
+}
+
+BondBreaking::~BondBreaking() = default;
+
+void BondBreaking::screen(bool on) {
+  // The stress criterion compares per-particle values: nothing to screen.
+  if (criterion_ == DamageCriterion::stress) on = false;
+  if (on && !screen_) screen_ = std::make_unique<detail::RowScreen>(*cloud_, model_->G().graph());
+  if (!on) screen_.reset();
+  screened_measure_ = 0;
+}
+
+// The rows that can hold a bond whose measure, sqrt(squared(i, j)), reaches `level`: from the
+// screen's snapshot of that measure, taken anew (a pass over every bond) when there is none or
+// when the rows kept pass an eighth of all. Every row when screening is off.
+template <class Squared>
+std::vector<ParticleId> BondBreaking::rows_near(int measure, const Squared& squared, const double* u, const double* H,
+                                                double level) {
+  const BondGraph& g = model_->G().graph();
+  if (!screen_) {
+    std::vector<ParticleId> all(g.rows());
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<ParticleId>(i);
+    return all;
+  }
+  if (screened_measure_ == measure) {
+    std::vector<ParticleId> rows = screen_->rows_reaching(u, H, level);
+    if (rows.size() * 8 <= g.rows()) return rows;
+  }
+  std::vector<double> top = detail::live_row_maxima(g, squared);
+  for (double& t : top) t = std::sqrt(t);
+  screen_->take(u, H, std::move(top));
+  screened_measure_ = measure;
+  return screen_->rows_reaching(u, H, level);
 }
 
 void BondBreaking::hold(const std::vector<ParticleId>& particles) {
@@ -49,21 +84,25 @@ std::size_t BondBreaking::find(const double* u, const double* H) {
   };
   // The bond passes, with the dimension a compile-time constant where it is 2 or 3. Squares
   // are compared (no root per bond); the stretch and hourglass strain themselves are roots of
-  // the largest squares.
+  // the largest squares. Only the rows the screen keeps are read: the stretch ratio
+  // |xi + eta| / |xi| (measure 1) is screened without grad u, the hourglass strain (2) with it.
+  // Bonds that never break (no-fail zones) neither arm the instability criterion nor set
+  // s_hg_max, nor keep a row in the screen.
+  enum : int { stretch_ratio = 1, hourglass_strain = 2 };
+  auto breakable = [&](std::size_t i, std::size_t j) { return held_.empty() || !(held_[i] || held_[j]); };
   auto pass = [&](auto dim) {
     const BondStretch stretch{dim, x, u};
+    auto ratio = [&](std::size_t i, std::size_t j) { return breakable(i, j) ? stretch.squared_ratio(i, j) : 0.0; };
     if (criterion_ == DamageCriterion::stretch) {
-      due_ = live_bonds_where(g, [&](std::size_t i, std::size_t j) { return stretch.exceeds(i, j, parameter_); });
+      const auto rows = rows_near(stretch_ratio, ratio, u, nullptr, 1.0 + parameter_);
+      due_ = live_bonds_where(g, rows, [&](std::size_t i, std::size_t j) { return stretch.exceeds(i, j, parameter_); });
       return;
     }
     // Instability, one pass a step: the largest stretch until armed (and at that step the
     // largest hourglass strain, once; none exceeds it then), afterwards the hourglass strains.
-    // Bonds that never break (no-fail zones) neither arm it nor set s_hg_max.
-    auto breakable = [&](std::size_t i, std::size_t j) { return held_.empty() || !(held_[i] || held_[j]); };
     if (!instability_->armed()) {
-      const double ratio = live_maximum(
-          g, [&](std::size_t i, std::size_t j) { return breakable(i, j) ? stretch.squared_ratio(i, j) : 0.0; });
-      const bool armed = instability_->arm(std::sqrt(ratio) - 1.0, [&] {
+      const auto rows = rows_near(stretch_ratio, ratio, u, nullptr, 1.0 + instability_->s_max());
+      const bool armed = instability_->arm(std::sqrt(live_maximum(g, rows, ratio)) - 1.0, [&] {
         const HourglassStrain hourglass{dim, x, u, gradient()};
         return std::sqrt(
             live_maximum(g, [&](std::size_t i, std::size_t j) { return breakable(i, j) ? hourglass.squared(i, j) : 0.0; }));
@@ -73,7 +112,9 @@ std::size_t BondBreaking::find(const double* u, const double* H) {
     }
     const HourglassStrain hourglass{dim, x, u, gradient()};
     const double t = instability_->threshold();
-    due_ = live_bonds_where(g, [&](std::size_t i, std::size_t j) { return hourglass.exceeds(i, j, t); });
+    auto squared = [&](std::size_t i, std::size_t j) { return breakable(i, j) ? hourglass.squared(i, j) : 0.0; };
+    const auto rows = rows_near(hourglass_strain, squared, u, hourglass.H, t);
+    due_ = live_bonds_where(g, rows, [&](std::size_t i, std::size_t j) { return hourglass.exceeds(i, j, t); });
   };
   if (criterion_ == DamageCriterion::stress) {
     sigma_.resize(cloud_->size() * 9);

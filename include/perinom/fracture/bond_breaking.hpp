@@ -5,6 +5,7 @@
 /// family no longer spans R^d detached). Irreversible.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +15,9 @@
 #include "perinom/models/correspondence.hpp"
 
 namespace perinom {
+namespace detail {
+class RowScreen;
+}
 
 enum class DamageCriterion {
   instability,  ///< seed 002 sec. 4: hourglass strain above its value when the largest stretch reached s_max
@@ -29,6 +33,7 @@ class BondBreaking {
   /// `parameter` is s_max, s_c or f_t (Pa) for the criterion. The model and cloud must outlive
   /// this object. Throws std::invalid_argument unless parameter > 0.
   BondBreaking(CorrespondenceModel& model, const PointCloud& cloud, DamageCriterion criterion, double parameter);
+  ~BondBreaking();
 
   /// A no-fail zone (the peers' device at grips and impact points): bonds with an end at one
   /// of these particles never break, and the instability criterion neither arms on their
@@ -40,6 +45,13 @@ class BondBreaking {
   /// (CorrespondenceModel::last_gradient() right after the force at u), else nullptr and the
   /// instability and stress criteria take it from G.
   std::size_t find(const double* u, const double* H = nullptr);
+  /// The bonds the last find() kept (row order), until apply().
+  const std::vector<BondPair>& due() const { return due_; }
+  /// The stretch and instability criteria read only the rows that can hold a bond at their
+  /// threshold (lib/fracture/row_screen.hpp: a bound from a snapshot, taken anew when the rows
+  /// it keeps pass an eighth of all): the same bonds as a pass over every row, which `false`
+  /// restores (for checks and benchmarks). On by default.
+  void screen(bool on);
   /// Breaks the bonds find() kept; returns the bonds that died (pairs, once each).
   std::size_t apply();
   /// The same at a state u whose internal force f the caller holds: f becomes the changed
@@ -71,6 +83,10 @@ class BondBreaking {
   std::vector<char> held_;  // per particle: in a no-fail zone (empty: none)
   std::vector<double> row_sums_, mass_;  // per dof, once stable_time_step() has been asked
   std::vector<double> H_, sigma_, sigma1_;  // workspaces: grad u, stresses, sigma1
+  std::unique_ptr<detail::RowScreen> screen_;  // null: every row is read
+  int screened_measure_ = 0;                  // what the screen's snapshot measures (0: none)
+  template <class Squared>
+  std::vector<ParticleId> rows_near(int measure, const Squared& squared, const double* u, const double* H, double level);
   /// After break_bonds: the counts, and the stiffness rows the breaks changed summed anew.
   std::size_t account(const BondBreaks& b);
   std::size_t broken_ = 0, detached_ = 0;

@@ -33,6 +33,7 @@ class InstabilityCriterion {
   /// selects the bonds itself (BondBreaking, one pass per step) uses this and threshold().
   bool arm(double max_stretch, const std::function<double()>& max_hourglass);
   bool armed() const { return armed_; }
+  double s_max() const { return s_max_; }
   /// s_hg_max once armed (0 before).
   double threshold() const { return s_hg_max_; }
 
