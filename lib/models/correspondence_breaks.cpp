@@ -26,9 +26,12 @@ BondBreaks CorrespondenceModel::break_bonds(const std::vector<std::pair<Particle
   check_breakable(bonds);
   BondBreaks out;
   out.rows = graph_->rows_touched(bonds);
-  for (const auto& [i, j] : bonds) out.broken += graph_->break_bond(i, j) ? 1 : 0;
-  G_.refresh_rows(out.rows);
-  if (S_) S_->refresh_rows(out.rows);
+  auto change = [&] {
+    for (const auto& [i, j] : bonds) out.broken += graph_->break_bond(i, j) ? 1 : 0;
+    G_.refresh_rows(out.rows);
+  };
+  if (S_) S_->refresh_rows(out.rows, change);
+  else change();
   out.detached = G_.detached();
   return out;
 }

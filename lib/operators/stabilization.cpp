@@ -224,54 +224,102 @@ const double* Stabilization::fit_diagonal(std::size_t i, double* out) const {
   return out;
 }
 
+void Stabilization::basis_of(std::size_t i, std::size_t j, double* p) const {
+  const int d = dim_, nb = nb_;
+  const double* xi = x_.data() + i * d;
+  const double* xj = x_.data() + j * d;
+  if (d == 2) nb == 2 ? basis<2, 2>(xi, xj, p) : basis<2, 5>(xi, xj, p);
+  else nb == 3 ? basis<3, 3>(xi, xj, p) : basis<3, 9>(xi, xj, p);
+}
+
 template <class Add>
-void Stabilization::row(std::size_t r, Add&& add) const {
+void Stabilization::centre_row(std::size_t r, Add&& add) const {
+  // Row r of the block of centre r: A_r = -sum_k a_rk, a_rk = w_rk V_k p_rk.
+  if (!(cv_[r] > 0.0)) return;
+  const int nb = nb_;
+  const BondGraph& g = fit_->graph();
+  double p[9], weights[9], diagonal[9];
+  const double scale = cv_[r];
+  double s[9] = {}, wsum = 0.0;
+  for (Offset k = g.begin(r); k < g.end(r); ++k) {
+    basis_of(r, g.col(k), p);
+    for (int q = 0; q < nb; ++q) s[q] -= wv_[k] * p[q];
+    wsum += wv_[k];
+  }
+  // The family first, then r itself: a model that folds columns together (the plate's
+  // ghosts onto their images) sums them in this order.
+  for (Offset k = g.begin(r); k < g.end(r); ++k)
+    if (g.alive(k)) add(g.col(k), scale * (-wv_[k] - dot(s, fit_weights(k, weights), nb)));
+  add(static_cast<ParticleId>(r), scale * (wsum - dot(s, fit_diagonal(r, diagonal), nb)));
+}
+
+template <class Add>
+void Stabilization::member_row(std::size_t i, std::size_t r, double wv_ir, Add&& add) const {
+  // Row r of the block of a centre i whose family holds r (a live bond): with c = cv_i w_ir V_r,
+  // c (e_r - e_i - sum_k (p_ir . a_ik) (e_k - e_i)).
+  if (!(cv_[i] > 0.0)) return;
   const int d = dim_, nb = nb_;
   const BondGraph& g = fit_->graph();
   double p[9], weights[9], diagonal[9];
-  auto p_of = [&](std::size_t i, std::size_t j) {
-    const double* xi = x_.data() + i * d;
-    const double* xj = x_.data() + j * d;
-    if (d == 2) nb == 2 ? basis<2, 2>(xi, xj, p) : basis<2, 5>(xi, xj, p);
-    else nb == 3 ? basis<3, 3>(xi, xj, p) : basis<3, 9>(xi, xj, p);
-  };
-  // Row r of the block of centre r: A_r = -sum_k a_rk, a_rk = w_rk V_k p_rk.
-  if (cv_[r] > 0.0) {
-    const double scale = cv_[r];
-    double s[9] = {}, wsum = 0.0;
-    for (Offset k = g.begin(r); k < g.end(r); ++k) {
-      p_of(r, g.col(k));
-      for (int q = 0; q < nb; ++q) s[q] -= wv_[k] * p[q];
-      wsum += wv_[k];
-    }
-    // The family first, then r itself: a model that folds columns together (the plate's
-    // ghosts onto their images) sums them in this order.
-    for (Offset k = g.begin(r); k < g.end(r); ++k)
-      if (g.alive(k)) add(g.col(k), scale * (-wv_[k] - dot(s, fit_weights(k, weights), nb)));
-    add(static_cast<ParticleId>(r), scale * (wsum - dot(s, fit_diagonal(r, diagonal), nb)));
-  }
-  // Row r of the block of every centre i whose family holds r: with c = cv_i w_ir V_r,
-  // c (e_r - e_i - sum_k (p_ir . a_ik) (e_k - e_i)).
-  for (Offset t = g.dual_begin(r); t < g.dual_end(r); ++t) {
-    const ParticleId i = g.dual_col(t);
-    if (!g.dual_alive(t) || !(cv_[i] > 0.0)) continue;
-    const double c = cv_[i] * t_wv_[t];
-    p_of(i, r);
-    add(static_cast<ParticleId>(r), c);
-    if (nb == d) {
-      // The same entries with w_ir V_r applied to p_ir before the dot products: the rounding
-      // the first-order rows had before the two orders shared this code, kept so that no
-      // first-order answer moved with the merge (ADR's iteration count follows 1e-14 changes).
-      double a[3];
-      for (int q = 0; q < d; ++q) a[q] = t_wv_[t] * p[q];
-      add(i, cv_[i] * (-t_wv_[t] - dot(a, fit_diagonal(i, diagonal), d)));
-      for (Offset k = g.begin(i); k < g.end(i); ++k)
-        if (g.alive(k)) add(g.col(k), -cv_[i] * dot(a, fit_weights(k, weights), d));
-      continue;
-    }
-    add(i, -c * (1.0 + dot(p, fit_diagonal(i, diagonal), nb)));
+  const double c = cv_[i] * wv_ir;
+  basis_of(i, r, p);
+  add(static_cast<ParticleId>(r), c);
+  if (nb == d) {
+    // The same entries with w_ir V_r applied to p_ir before the dot products: the rounding
+    // the first-order rows had before the two orders shared this code, kept so that no
+    // first-order answer moved with the merge (ADR's iteration count follows 1e-14 changes).
+    double a[3];
+    for (int q = 0; q < d; ++q) a[q] = wv_ir * p[q];
+    add(static_cast<ParticleId>(i), cv_[i] * (-wv_ir - dot(a, fit_diagonal(i, diagonal), d)));
     for (Offset k = g.begin(i); k < g.end(i); ++k)
-      if (g.alive(k)) add(g.col(k), -c * dot(p, fit_weights(k, weights), nb));
+      if (g.alive(k)) add(g.col(k), -cv_[i] * dot(a, fit_weights(k, weights), d));
+    return;
+  }
+  add(static_cast<ParticleId>(i), -c * (1.0 + dot(p, fit_diagonal(i, diagonal), nb)));
+  for (Offset k = g.begin(i); k < g.end(i); ++k)
+    if (g.alive(k)) add(g.col(k), -c * dot(p, fit_weights(k, weights), nb));
+}
+
+template <class Add>
+void Stabilization::row(std::size_t r, Add&& add) const {
+  const BondGraph& g = fit_->graph();
+  centre_row(r, add);
+  for (Offset t = g.dual_begin(r); t < g.dual_end(r); ++t)
+    if (g.dual_alive(t)) member_row(g.dual_col(t), r, t_wv_[t], add);
+}
+
+void Stabilization::add_blocks(ScalarCsr& S0, const std::vector<ParticleId>& centres, double sign) const {
+  // Block m couples Q = {m} + H_m: gathered densely (|Q|^2 values), then added row by row
+  // with one walk along each stored row of Q.
+  const BondGraph& g = fit_->graph();
+  std::vector<int> local(S0.rows(), -1);  // column -> its place in Q
+  std::vector<ParticleId> Q;
+  std::vector<double> B;
+  for (const ParticleId m : centres) {
+    Q.assign(1, m);
+    for (Offset k = g.begin(m); k < g.end(m); ++k) Q.push_back(g.col(k));
+    const std::size_t q = Q.size();
+    for (std::size_t a = 0; a < q; ++a) local[Q[a]] = static_cast<int>(a);
+    B.assign(q * q, 0.0);
+    auto into = [&](std::size_t row) {
+      return [&, row](ParticleId j, double v) { B[row * q + static_cast<std::size_t>(local[j])] += v; };
+    };
+    centre_row(m, into(0));
+    for (Offset k = g.begin(m); k < g.end(m); ++k)
+      if (g.alive(k)) member_row(m, g.col(k), wv_[k], into(static_cast<std::size_t>(k - g.begin(m)) + 1));
+    for (std::size_t a = 0; a < q; ++a) {
+      std::size_t found = 0, nonzero = 0;
+      for (std::size_t b = 0; b < q; ++b) nonzero += B[a * q + b] != 0.0;
+      for (Offset e = S0.offsets[Q[a]]; e < S0.offsets[Q[a] + 1]; ++e) {
+        const int b = local[S0.cols[e]];
+        if (b < 0) continue;
+        S0.values[e] += sign * B[a * q + static_cast<std::size_t>(b)];
+        found += B[a * q + static_cast<std::size_t>(b)] != 0.0;
+      }
+      if (found != nonzero)
+        throw std::logic_error("Stabilization::add_blocks: a block has an entry outside the stored pattern");
+    }
+    for (const ParticleId j : Q) local[j] = -1;
   }
 }
 

@@ -79,17 +79,19 @@ class AssembledTerm final : public StabilizationTerm {
   void add_rest(const double* u, const double*, double* f) override { S0_.apply_add(u, G_->dim(), f); }
   void add_row(std::size_t i, RowAccumulator& acc, int copies) const override {
     if (S_) return S_->add_row(i, acc, copies);
-    for (Offset k = S0_.offsets[i]; k < S0_.offsets[i + 1]; ++k) {
-      double* block = acc.at(S0_.cols[k]);
-      for (int a = 0; a < copies; ++a) block[a * (copies + 1)] += S0_.values[k];
-    }
+    add_stored_row(S0_, i, acc, copies);
   }
   void refresh_rows(const std::vector<ParticleId>& rows) override {
-    if (!S_)
-      throw std::logic_error("StabilizationTerm: " + name_ + " was stored without the operator it came from; "
-                             "a refresh needs a rebuild");
+    require_source();
     S_->refresh_rows(rows);
     refresh_stabilization(S0_, *S_, G_->graph(), rows);
+  }
+  void refresh_rows(const std::vector<ParticleId>& rows, const std::function<void()>& change) override {
+    require_source();
+    S_->add_blocks(S0_, rows, -1.0);
+    change();
+    S_->refresh_rows(rows);
+    S_->add_blocks(S0_, rows, 1.0);
   }
   std::string name() const override { return name_; }
   std::size_t memory_bytes() const override { return S0_.memory_bytes() + (S_ ? S_->memory_bytes() : 0); }
@@ -97,6 +99,11 @@ class AssembledTerm final : public StabilizationTerm {
   bool refreshable() const override { return S_.has_value(); }
 
  private:
+  void require_source() const {
+    if (!S_)
+      throw std::logic_error("StabilizationTerm: " + name_ + " was stored without the operator it came from; "
+                             "a refresh needs a rebuild");
+  }
   std::optional<Stabilization> S_;
   ScalarCsr S0_;
   std::string name_;
@@ -137,7 +144,19 @@ class SecondOrderMatrixFreeTerm final : public StabilizationTerm {
 
 }  // namespace
 
+void add_stored_row(const ScalarCsr& S0, std::size_t i, RowAccumulator& acc, int copies) {
+  for (Offset k = S0.offsets[i]; k < S0.offsets[i + 1]; ++k) {
+    double* block = acc.at(S0.cols[k]);
+    for (int a = 0; a < copies; ++a) block[a * (copies + 1)] += S0.values[k];
+  }
+}
+
 void StabilizationTerm::gradient(const double* u, double* H) { G_->apply(u, G_->dim(), H); }
+
+void StabilizationTerm::refresh_rows(const std::vector<ParticleId>& rows, const std::function<void()>& change) {
+  change();
+  refresh_rows(rows);
+}
 
 void StabilizationTerm::apply(const double* u, double* H, double* Su) {
   const int d = G_->dim();

@@ -400,3 +400,35 @@ TEST_CASE("the second-order stabilization energy gives the same bits on 1 and 2 
   omp_set_num_threads(before);
   CHECK(std::memcmp(&energy[0], &energy[1], sizeof(double)) == 0);
 }
+
+TEST_CASE("a stored S0 updated by the blocks of the refreshed centres equals its rows assembled anew",
+          "[operators][refresh]") {
+  // What CorrespondenceModel::break_bonds runs (StabilizationTerm::refresh_rows around the
+  // change): S0 minus the blocks of the touched centres, the breaks and G's refresh, plus
+  // their blocks. Three rounds, the last one detaching a particle.
+  for (const Case k : {Case{2, false, 1}, Case{2, true, 1}, Case{3, false, 1}, Case{3, true, 1}}) {
+    const int d = k.dim;
+    INFO("dim " << d << (k.knn ? " knn" : " radius"));
+    const PointCloud cloud = test::lattice(d, d == 2 ? 12 : 6, 0.3);
+    const Families f = k.knn ? knn_families(cloud, d == 2 ? 16 : 36) : radius_families(cloud, 2.515);
+    auto graph = std::make_shared<BondGraph>(f);
+    NonlocalOperator G(cloud, graph, bond_weights(cloud, f, Influence::inverse_square), OperatorOptions{1, false});
+    const auto term = make_stabilization(cloud, G, modulus, AssemblyLevel::assembled);
+    for (int round = 0; round < 3; ++round) {
+      std::vector<Bond> breaks = random_bonds(f, cloud.size() / 6, 40 + round);
+      if (round == 2) {
+        const ParticleId p = static_cast<ParticleId>(cloud.size() / 2);
+        for (Offset b = f.offsets[p]; b < f.offsets[p + 1]; ++b) breaks.emplace_back(p, f.neighbors[b]);
+      }
+      const std::vector<ParticleId> rows = graph->rows_touched(breaks);
+      term->refresh_rows(rows, [&] {
+        for (const auto& [i, j] : breaks) graph->break_bond(i, j);
+        G.refresh_rows(rows);
+      });
+      const Stabilization anew(cloud, G, modulus);
+      const ScalarCsr S0 = assemble_stabilization(anew, cloud.size());
+      CHECK(rows_difference(scalar_rows(*term->stored()), scalar_rows(S0)) <= tolerance);
+    }
+    CHECK_FALSE(G.detached().empty());
+  }
+}

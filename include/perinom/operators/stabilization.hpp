@@ -69,6 +69,12 @@ class Stabilization {
   /// After fit.refresh_rows(rows) (distinct rows): cv_i and the w V of those rows' bonds, in
   /// both orders.
   void refresh_rows(const std::vector<ParticleId>& rows);
+  /// S0 += sign * the blocks of these centres (centre m's block couples {m} + H_m; S is the
+  /// sum of the blocks), within S0's pattern (std::logic_error outside it). Taken with sign
+  /// -1 before the fit's and this object's refresh_rows(centres) and +1 after, it updates a
+  /// stored S0 by differences: refresh_stabilization's rows to rounding, for the cost of the
+  /// refreshed centres' blocks instead of every row they touch.
+  void add_blocks(ScalarCsr& S0, const std::vector<ParticleId>& centres, double sign) const;
 
   /// cv_i of every particle.
   const std::vector<double>& scaled_coefficients() const { return cv_; }
@@ -80,6 +86,12 @@ class Stabilization {
  private:
   template <class Add>
   void row(std::size_t i, Add&& add) const;
+  /// Row r of centre r's block, and row r of centre i's block for r in H_i (w_ir V_r given).
+  template <class Add>
+  void centre_row(std::size_t r, Add&& add) const;
+  template <class Add>
+  void member_row(std::size_t i, std::size_t r, double wv_ir, Add&& add) const;
+  void basis_of(std::size_t i, std::size_t j, double* p) const;
   /// The fit's weights a_ik of bond k (gradient, then Hessian: nb values), and -sum_k a_ik.
   const double* fit_weights(Offset k, double* out) const;
   const double* fit_diagonal(std::size_t i, double* out) const;

@@ -2,6 +2,7 @@
 /// @file One interface for the stabilization S of the correspondence force, at three assembly
 /// levels (in the spirit of MFEM's AssemblyLevel): how S is stored is the level's business,
 /// what S is (THEORY sec. 4 and 6) is the same at every level.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,6 +47,12 @@ class StabilizationTerm {
   /// After G.refresh_rows(rows) (distinct rows, from BondGraph::rows_touched): S as built from
   /// the live bonds. Throws std::logic_error for a stored S without the operator it came from.
   virtual void refresh_rows(const std::vector<ParticleId>& rows) = 0;
+  /// The same around the change itself: change() breaks bonds in G's graph and calls
+  /// G.refresh_rows(rows) (rows: BondGraph::rows_touched of those breaks, taken before them).
+  /// A level that updates S by differences (assembled: S0 minus the blocks of those centres
+  /// before the change, plus their blocks after) reads G and the graph before change(); the
+  /// others call it first and refresh as above.
+  virtual void refresh_rows(const std::vector<ParticleId>& rows, const std::function<void()>& change);
   /// False for a stored S without its source, whose refresh_rows throws.
   virtual bool refreshable() const { return true; }
   /// For memory listings: what is stored, and its bytes (workspaces included).
@@ -75,6 +82,10 @@ std::unique_ptr<StabilizationTerm> make_stabilization(const PointCloud& cloud, c
 /// rests on first-order identities and throws InputError naming model.stabilization_storage.
 std::unique_ptr<StabilizationTerm> make_stabilization(const PointCloud& cloud, const NonlocalOperator& G,
                                                       const BondWeights& weights, double modulus, AssemblyLevel level);
+
+/// Adds row i of a stored S0 to acc as StabilizationTerm::add_row does (copies values per
+/// column on the block diagonal).
+void add_stored_row(const ScalarCsr& S0, std::size_t i, RowAccumulator& acc, int copies);
 
 /// An S assembled elsewhere (the second-order operator energy, or S0 of an operator G was
 /// corrected from), applied to each of G's d components: the assembled level without the
