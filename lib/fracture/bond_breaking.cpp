@@ -141,10 +141,15 @@ double BondBreaking::stable_time_step() {
   if (row_sums_.empty()) {
     row_sums_ = model_->stiffness_row_sums();
     mass_ = model_->lumped_mass();
+    largest_ratio();
   }
-  double w2 = 0.0;
-  for (std::size_t k = 0; k < row_sums_.size(); ++k) w2 = std::max(w2, row_sums_[k] / mass_[k]);
-  return 2.0 / std::sqrt(w2);
+  return 2.0 / std::sqrt(w2_);
+}
+
+void BondBreaking::largest_ratio() {
+  w2_ = 0.0, w2_at_ = 0;
+  for (std::size_t k = 0; k < row_sums_.size(); ++k)
+    if (row_sums_[k] / mass_[k] > w2_) w2_ = row_sums_[k] / mass_[k], w2_at_ = k;
 }
 
 std::size_t BondBreaking::apply() {
@@ -172,9 +177,18 @@ std::size_t BondBreaking::account(const BondBreaks& b) {
     std::sort(rows.begin(), rows.end());
     rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
     const std::vector<double> sums = model_->stiffness_row_sums(rows);
+    // The largest ratio follows the changed rows; only when its own row fell is every row read.
     const int d = cloud_->dim;
+    bool fell = false;
     for (std::size_t r = 0; r < rows.size(); ++r)
-      for (int a = 0; a < d; ++a) row_sums_[rows[r] * d + a] = sums[r * d + a];
+      for (int a = 0; a < d; ++a) {
+        const std::size_t k = rows[r] * d + a;
+        row_sums_[k] = sums[r * d + a];
+        const double w2 = row_sums_[k] / mass_[k];
+        if (w2 > w2_) w2_ = w2, w2_at_ = k, fell = false;
+        else if (k == w2_at_ && w2 < w2_) fell = true;
+      }
+    if (fell) largest_ratio();
   }
   broken_ += b.broken;
   detached_ = b.detached.size();

@@ -262,25 +262,6 @@ void add_row_sums(int d, std::size_t slot, const std::vector<ParticleId>& cols, 
       for (int c = 0; c < d; ++c) sums[slot * d + a] += std::abs(blocks[(k * d + a) * d + c]);
 }
 
-// Adds row i of a stored S0 to the block diagonals of a block row (cols sorted, as are S0's):
-// a column S0 has and the row lacks gets a block of its own.
-void add_stored_row(int d, const ScalarCsr& S0, std::size_t i, std::vector<ParticleId>& cols,
-                    std::vector<double>& blocks) {
-  const std::size_t given = cols.size();
-  std::size_t k = 0;
-  for (Offset e = S0.offsets[i]; e < S0.offsets[i + 1]; ++e) {
-    const ParticleId j = S0.cols[e];
-    while (k < given && cols[k] < j) ++k;
-    std::size_t at = k;
-    if (k == given || cols[k] != j) {
-      at = cols.size();
-      cols.push_back(j);
-      blocks.resize(blocks.size() + d * d, 0.0);
-    }
-    for (int a = 0; a < d; ++a) blocks[at * d * d + a * d + a] += S0.values[e];
-  }
-}
-
 }  // namespace
 
 std::vector<double> CorrespondenceModel::stiffness_row_sums() const {
@@ -305,18 +286,11 @@ std::vector<double> CorrespondenceModel::stiffness_row_sums(const std::vector<Pa
   std::vector<double> sums(rows.size() * d, 0.0);
   std::vector<double> C(d * d * d * d);
   material_.tangent(C.data());
-  // Where S0 is stored (and current: break_bonds refreshes it first) its rows are read, not
-  // taken from the closed form again: the same entries to rounding, at a fraction of the cost.
-  const ScalarCsr* S0 = S_ ? S_->stored() : nullptr;
-  for_each_tangent_row(rows, G_, PointwiseTangent{C.data(), 0, volume_.data()}, S0 ? nullptr : S_.get(),
+  // A stored S0 is read as stored (break_bonds has just refreshed it), not from its closed form.
+  for_each_tangent_row(rows, G_, PointwiseTangent{C.data(), 0, volume_.data()}, S_.get(),
                        [&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
-                         const auto slot = static_cast<std::size_t>(
-                             std::lower_bound(rows.begin(), rows.end(), static_cast<ParticleId>(i)) - rows.begin());
-                         if (!S0) return add_row_sums(d, slot, cols, blocks, sums.data());
-                         std::vector<double> with_S0 = blocks;
-                         std::vector<ParticleId> all = cols;
-                         add_stored_row(d, *S0, i, all, with_S0);
-                         add_row_sums(d, slot, all, with_S0, sums.data());
+                         const auto at = std::lower_bound(rows.begin(), rows.end(), static_cast<ParticleId>(i));
+                         add_row_sums(d, static_cast<std::size_t>(at - rows.begin()), cols, blocks, sums.data());
                        });
   return sums;
 }

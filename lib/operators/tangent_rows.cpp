@@ -12,9 +12,9 @@ using A = OperatorAccess;
 class TangentRowFill {
  public:
   TangentRowFill(const NonlocalOperator& G, const PointwiseTangent& tangent, const StabilizationTerm* S,
-                 const StrongRows* strong, const double* local)
-      : G_(G), g_(G.graph()), tangent_(tangent), S_(S), strong_(strong), local_(local), d_(G.dim()),
-        T_(static_cast<std::size_t>(d_) * d_ * d_) {}
+                 const StrongRows* strong, const double* local, bool stored_S0 = false)
+      : G_(G), g_(G.graph()), tangent_(tangent), S_(S), S0_(stored_S0 && S ? S->stored() : nullptr), strong_(strong),
+        local_(local), d_(G.dim()), T_(static_cast<std::size_t>(d_) * d_ * d_) {}
 
   void operator()(std::size_t i, RowAccumulator& acc) {
     const int d = d_;
@@ -40,7 +40,8 @@ class TangentRowFill {
       }
     }
     if (local_) add_gradient_columns(i, local_ + i * d * d * d, acc);
-    if (S_) S_->add_row(i, acc, d);
+    if (S0_) add_stored_row(*S0_, i, acc, d);
+    else if (S_) S_->add_row(i, acc, d);
   }
 
  private:
@@ -80,6 +81,7 @@ class TangentRowFill {
   const BondGraph& g_;
   PointwiseTangent tangent_;
   const StabilizationTerm* S_;
+  const ScalarCsr* S0_;  // S's stored rows, when they are to be read as stored
   const StrongRows* strong_;
   const double* local_;
   int d_;
@@ -97,7 +99,7 @@ void for_each_tangent_row(const NonlocalOperator& G, const PointwiseTangent& tan
 void for_each_tangent_row(const std::vector<ParticleId>& rows, const NonlocalOperator& G,
                           const PointwiseTangent& tangent, const StabilizationTerm* S, const BlockRowVisitor& visit) {
   for_each_block_row(rows, G.rows(), G.dim() * G.dim(),
-                     [&] { return RowFill(TangentRowFill(G, tangent, S, nullptr, nullptr)); }, visit);
+                     [&] { return RowFill(TangentRowFill(G, tangent, S, nullptr, nullptr, true)); }, visit, false);
 }
 
 }  // namespace perinom

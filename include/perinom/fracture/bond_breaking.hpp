@@ -82,6 +82,9 @@ class BondBreaking {
   std::vector<BondPair> due_;
   std::vector<char> held_;  // per particle: in a no-fail zone (empty: none)
   std::vector<double> row_sums_, mass_;  // per dof, once stable_time_step() has been asked
+  double w2_ = 0.0;                      // max_k row_sums_[k] / mass_[k], at dof w2_at_
+  std::size_t w2_at_ = 0;
+  void largest_ratio();
   std::vector<double> H_, sigma_, sigma1_;  // workspaces: grad u, stresses, sigma1
   std::unique_ptr<detail::RowScreen> screen_;  // null: every row is read
   int screened_measure_ = 0;                  // what the screen's snapshot measures (0: none)

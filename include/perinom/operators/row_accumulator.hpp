@@ -27,11 +27,12 @@ class RowAccumulator {
     return values_.data() + static_cast<std::size_t>(s) * block_;
   }
 
-  /// Sorts the touched columns; afterwards cols() and block(k) list the row in column order.
-  void finish() {
+  /// Sorts the touched columns; afterwards cols() and block(k) list the row in column order
+  /// (sorted = false: in the order first touched, for a reader that needs no order).
+  void finish(bool sorted = true) {
     order_.resize(cols_.size());
     for (std::size_t k = 0; k < cols_.size(); ++k) order_[k] = static_cast<int>(k);
-    std::sort(order_.begin(), order_.end(), [&](int a, int b) { return cols_[a] < cols_[b]; });
+    if (sorted) std::sort(order_.begin(), order_.end(), [&](int a, int b) { return cols_[a] < cols_[b]; });
     sorted_cols_.resize(cols_.size());
     for (std::size_t k = 0; k < cols_.size(); ++k) sorted_cols_[k] = cols_[order_[k]];
   }
@@ -68,8 +69,9 @@ using BlockRowVisitor =
 /// own) and its own accumulator; visit is called concurrently for distinct rows.
 void for_each_block_row(std::size_t rows, std::size_t columns, int block, const std::function<RowFill()>& make_fill,
                         const BlockRowVisitor& visit);
-/// The same for the listed rows only.
+/// The same for the listed rows only; sorted = false hands visit the columns in no order.
 void for_each_block_row(const std::vector<ParticleId>& rows, std::size_t columns, int block,
-                        const std::function<RowFill()>& make_fill, const BlockRowVisitor& visit);
+                        const std::function<RowFill()>& make_fill, const BlockRowVisitor& visit,
+                        bool sorted = true);
 
 }  // namespace perinom
