@@ -1,5 +1,7 @@
 #include "perinom/operators/tangent_rows.hpp"
 
+#include <type_traits>
+
 #include "operator_access.hpp"
 #include "perinom/operators/row_accumulator.hpp"
 
@@ -47,7 +49,15 @@ class TangentRowFill {
  private:
   // Adds sum_e T[a c e] G_e[m][j] for j in {m} + H_m: a dependence on u through grad u at m.
   void add_gradient_columns(std::size_t m, const double* T, RowAccumulator& acc) {
-    const int d = d_, d2 = d * d;
+    if (d_ == 2) return add_gradient_columns(std::integral_constant<int, 2>{}, m, T, acc);
+    if (d_ == 3) return add_gradient_columns(std::integral_constant<int, 3>{}, m, T, acc);
+    add_gradient_columns(d_, m, T, acc);
+  }
+  // The same with the dimension a compile-time constant where it is one (Dim: int or
+  // std::integral_constant), so the block loops unroll.
+  template <class Dim>
+  void add_gradient_columns(Dim dim, std::size_t m, const double* T, RowAccumulator& acc) {
+    const int d = dim, d2 = d * d;
     double scratch[3];
     auto add_column = [&](ParticleId j, const double* gmj) {
       double* K = acc.at(j);
