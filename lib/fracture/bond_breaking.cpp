@@ -35,30 +35,50 @@ void BondBreaking::screen(bool on) {
   if (criterion_ == DamageCriterion::stress) on = false;
   if (on && !screen_) screen_ = std::make_unique<detail::RowScreen>(*cloud_, model_->G().graph());
   if (!on) screen_.reset();
-  screened_measure_ = 0;
+  screened_measure_ = 0, skip_ = 0, backoff_ = 0;
 }
 
 // The rows that can hold a bond whose measure, sqrt(squared(i, j)), reaches `level`: from the
 // screen's snapshot of that measure, taken anew (a pass over every bond) when there is none or
-// when the rows kept pass an eighth of all. Every row when screening is off.
+// when the rows kept pass an eighth of all. Every row when screening is off, and for a while
+// when it does not pay: a snapshot that lasted fewer than 16 calls (fast, large motion, an
+// impact) reads every row for the next 32, 64, ... 512 calls instead (the old cost, not a
+// snapshot and a bound a step), then tries a snapshot again.
 template <class Squared>
-std::vector<ParticleId> BondBreaking::rows_near(int measure, const Squared& squared, const double* u, const double* H,
-                                                double level) {
+const std::vector<ParticleId>& BondBreaking::rows_near(int measure, const Squared& squared, const double* u,
+                                                       const double* H, double level) {
   const BondGraph& g = model_->G().graph();
-  if (!screen_) {
-    std::vector<ParticleId> all(g.rows());
-    for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<ParticleId>(i);
-    return all;
+  auto every_row = [&]() -> const std::vector<ParticleId>& {
+    if (all_rows_.size() != g.rows()) {
+      all_rows_.resize(g.rows());
+      for (std::size_t i = 0; i < all_rows_.size(); ++i) all_rows_[i] = static_cast<ParticleId>(i);
+    }
+    return all_rows_;
+  };
+  if (!screen_) return every_row();
+  if (skip_ > 0) {
+    --skip_;
+    return every_row();
   }
+  ++since_snapshot_;
   if (screened_measure_ == measure) {
-    std::vector<ParticleId> rows = screen_->rows_reaching(u, H, level);
-    if (rows.size() * 8 <= g.rows()) return rows;
+    rows_ = screen_->rows_reaching(u, H, level);
+    if (rows_.size() * 8 <= g.rows()) return rows_;
+    if (since_snapshot_ < 16) {
+      backoff_ = std::min(2 * std::max(backoff_, 16), 512);
+      skip_ = backoff_ - 1;
+      screened_measure_ = 0;
+      return every_row();
+    }
+    backoff_ = 0;
   }
   std::vector<double> top = detail::live_row_maxima(g, squared);
   for (double& t : top) t = std::sqrt(t);
   screen_->take(u, H, std::move(top));
   screened_measure_ = measure;
-  return screen_->rows_reaching(u, H, level);
+  since_snapshot_ = 0;
+  rows_ = screen_->rows_at_snapshot(level);
+  return rows_;
 }
 
 void BondBreaking::hold(const std::vector<ParticleId>& particles) {
@@ -94,14 +114,14 @@ std::size_t BondBreaking::find(const double* u, const double* H) {
     const BondStretch stretch{dim, x, u};
     auto ratio = [&](std::size_t i, std::size_t j) { return breakable(i, j) ? stretch.squared_ratio(i, j) : 0.0; };
     if (criterion_ == DamageCriterion::stretch) {
-      const auto rows = rows_near(stretch_ratio, ratio, u, nullptr, 1.0 + parameter_);
+      const auto& rows = rows_near(stretch_ratio, ratio, u, nullptr, 1.0 + parameter_);
       due_ = live_bonds_where(g, rows, [&](std::size_t i, std::size_t j) { return stretch.exceeds(i, j, parameter_); });
       return;
     }
     // Instability, one pass a step: the largest stretch until armed (and at that step the
     // largest hourglass strain, once; none exceeds it then), afterwards the hourglass strains.
     if (!instability_->armed()) {
-      const auto rows = rows_near(stretch_ratio, ratio, u, nullptr, 1.0 + instability_->s_max());
+      const auto& rows = rows_near(stretch_ratio, ratio, u, nullptr, 1.0 + instability_->s_max());
       const bool armed = instability_->arm(std::sqrt(live_maximum(g, rows, ratio)) - 1.0, [&] {
         const HourglassStrain hourglass{dim, x, u, gradient()};
         return std::sqrt(
@@ -113,7 +133,7 @@ std::size_t BondBreaking::find(const double* u, const double* H) {
     const HourglassStrain hourglass{dim, x, u, gradient()};
     const double t = instability_->threshold();
     auto squared = [&](std::size_t i, std::size_t j) { return breakable(i, j) ? hourglass.squared(i, j) : 0.0; };
-    const auto rows = rows_near(hourglass_strain, squared, u, hourglass.H, t);
+    const auto& rows = rows_near(hourglass_strain, squared, u, hourglass.H, t);
     due_ = live_bonds_where(g, rows, [&](std::size_t i, std::size_t j) { return hourglass.exceeds(i, j, t); });
   };
   if (criterion_ == DamageCriterion::stress) {

@@ -162,4 +162,13 @@ std::vector<ParticleId> RowScreen::rows_reaching(const double* u, const double* 
   return out;
 }
 
+std::vector<ParticleId> RowScreen::rows_at_snapshot(double threshold) const {
+  if (!taken()) throw std::logic_error("RowScreen::rows_at_snapshot before take()");
+  const double limit = threshold * (1.0 - 1e-6);
+  std::vector<ParticleId> out;
+  for (std::size_t i = 0; i < particles_; ++i)
+    if (r_[i] >= limit) out.push_back(static_cast<ParticleId>(i));
+  return out;
+}
+
 }  // namespace perinom::detail

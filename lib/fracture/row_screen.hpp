@@ -36,6 +36,8 @@ class RowScreen {
   /// The rows, ascending, whose bound at (u, H) reaches `threshold` (less a relative 1e-6 for
   /// rounding). H must be given exactly when it was given to take().
   std::vector<ParticleId> rows_reaching(const double* u, const double* H, double threshold);
+  /// The same at the snapshot's own state (no bound to add): the rows with r_i at the threshold.
+  std::vector<ParticleId> rows_at_snapshot(double threshold) const;
 
  private:
   std::size_t cell_index(const int* c) const;

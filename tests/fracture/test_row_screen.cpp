@@ -85,7 +85,10 @@ TEST_CASE("the row screen keeps every row with a bond at the threshold, and few 
 TEST_CASE("screened criteria break the bonds a pass over every row breaks, step by step", "[fracture][sent]") {
   // Two copies of the coarse SENT plate pulled by a growing field with local noise: one reads
   // only the rows its screen keeps, the other every row. The bonds found, and so the models,
-  // stay the same through arming, breaks, refreshed rows and new snapshots.
+  // stay the same through arming, breaks, refreshed rows and new snapshots; and through a
+  // jolt (steps 301-320: a new random field each step, so snapshots stop paying and the screen
+  // reads every row for a while) and the calm after it. Small steps, so that the screen
+  // keeps few rows between snapshots.
   const Scene scene = read_scene(std::string(PERINOM_SOURCE_DIR) + "/examples/sent.yaml");
   for (const DamageCriterion criterion : {DamageCriterion::instability, DamageCriterion::stretch}) {
     INFO((criterion == DamageCriterion::instability ? "instability" : "stretch"));
@@ -98,12 +101,14 @@ TEST_CASE("screened criteria break the bonds a pass over every row breaks, step 
     const auto noise = test::random_field(n * 2, 1.0, 9);
     std::vector<double> u(n * 2);
     std::size_t found = 0;
-    for (int step = 1; step <= 120; ++step) {
-      const double e = 4e-4 * step;  // mean strain
+    for (int step = 1; step <= 600; ++step) {
+      const double e = 8e-5 * step;  // mean strain
+      const bool jolt = step > 300 && step <= 320;
+      const auto shake = test::random_field(n * 2, jolt ? 0.25 * e * 5e-5 : 0.0, 100 + step);
       for (std::size_t i = 0; i < n; ++i) {
         const double x = a.cloud.x[2 * i], y = a.cloud.x[2 * i + 1];
-        u[2 * i] = -0.3 * e * x + 2e-3 * e * 5e-5 * noise[2 * i];
-        u[2 * i + 1] = e * y + 0.3 * e * 5e-5 * noise[2 * i + 1] * std::exp(-std::abs(y - 5e-4) / 5e-5);
+        u[2 * i] = -0.3 * e * x + 2e-3 * e * 5e-5 * noise[2 * i] + shake[2 * i];
+        u[2 * i + 1] = e * y + 0.3 * e * 5e-5 * noise[2 * i + 1] * std::exp(-std::abs(y - 5e-4) / 5e-5) + shake[2 * i + 1];
       }
       INFO("step " << step);
       REQUIRE(screened.find(u.data()) == every.find(u.data()));

@@ -49,8 +49,9 @@ class BondBreaking {
   const std::vector<BondPair>& due() const { return due_; }
   /// The stretch and instability criteria read only the rows that can hold a bond at their
   /// threshold (lib/fracture/row_screen.hpp: a bound from a snapshot, taken anew when the rows
-  /// it keeps pass an eighth of all): the same bonds as a pass over every row, which `false`
-  /// restores (for checks and benchmarks). On by default.
+  /// it keeps pass an eighth of all; every row for a while after snapshots that last fewer
+  /// than 16 calls): the same bonds as a pass over every row, which `false` restores (for
+  /// checks and benchmarks). On by default.
   void screen(bool on);
   /// Breaks the bonds find() kept; returns the bonds that died (pairs, once each).
   std::size_t apply();
@@ -88,8 +89,11 @@ class BondBreaking {
   std::vector<double> H_, sigma_, sigma1_;  // workspaces: grad u, stresses, sigma1
   std::unique_ptr<detail::RowScreen> screen_;  // null: every row is read
   int screened_measure_ = 0;                  // what the screen's snapshot measures (0: none)
+  int since_snapshot_ = 0, skip_ = 0, backoff_ = 0;  // calls: since the snapshot, left unscreened, last backoff
+  std::vector<ParticleId> rows_, all_rows_;    // the rows kept; every row
   template <class Squared>
-  std::vector<ParticleId> rows_near(int measure, const Squared& squared, const double* u, const double* H, double level);
+  const std::vector<ParticleId>& rows_near(int measure, const Squared& squared, const double* u, const double* H,
+                                           double level);
   /// After break_bonds: the counts, and the stiffness rows the breaks changed summed anew.
   std::size_t account(const BondBreaks& b);
   std::size_t broken_ = 0, detached_ = 0;
