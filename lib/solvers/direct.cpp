@@ -44,11 +44,7 @@ SolveReport solve_direct(TangentModel& model, const Loading& loading, std::vecto
     for (std::size_t k = 0; k < n_all; ++k) r[static_cast<Eigen::Index>(k)] = loading.force_at(1.0, k) - fp[k];
   }
   const Eigen::VectorXd rhs = red.T.transpose() * r;
-  Sparse KT;
-  {
-    const Sparse K = detail::assemble_stiffness(model);
-    KT = Sparse(red.T.transpose() * K * red.T);
-  }
+  const Sparse KT(detail::reduced_stiffness(model, detail::TRows(red.T, index)));
   if (progress) progress->phase("factoring K_T (CHOLMOD supernodal Cholesky)");
   Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> llt;
   llt.cholmod().print = 0;

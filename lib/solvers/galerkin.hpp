@@ -31,4 +31,20 @@ struct Reduction {
 Reduction reduce(std::size_t dofs, const Loading& loading, const std::vector<std::int64_t>& index, int n_free,
                  double s = 0.0);
 
+/// T by rows: a free dof is its own column (index[g] >= 0), a constrained one is T's row of
+/// it (fixed[g]: (column, value) pairs; empty for a dof fixed on its particle).
+struct TRows {
+  TRows(const Sparse& T, const std::vector<std::int64_t>& free_index);
+  std::vector<std::int64_t> index;
+  std::vector<std::vector<std::pair<int, double>>> fixed;
+  int columns = 0;
+};
+
+using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+
+/// K_T = T^T K T (K from the model's tangent rows at its last prepare_tangent), rows sorted,
+/// assembled from the rows in parallel: the same matrix as Sparse(T^T K T) without forming
+/// K (3.5-3.7 s against about 12 s on the 2-D plate at 101k particles, 2 threads).
+RowSparse reduced_stiffness(const TangentModel& model, const TRows& t);
+
 }  // namespace perinom::detail
