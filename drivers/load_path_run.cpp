@@ -99,7 +99,7 @@ io::Json load_path_newton_check(Problem& p, const std::vector<double>& u, const 
   if (history) history->reset_history();
   LoadPathOptions opt = load_path_options(p.scene.solver);
   opt.scheme = LoadPathScheme::newton;
-  opt.newton = NewtonOptions{};
+  opt.newton = newton_options(p);  // Newton's own tolerances, the scene's linear solver
   ProbeHistory second;
   std::vector<double> un(model.dofs(), 0.0);
   std::vector<LoadStage> stages = p.stages;

@@ -1,5 +1,6 @@
 // perinom: the command line program.
 //   perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N] [--keep] [--max-memory SIZE] [--restart DIR]
+//               [--petsc-options 'OPTIONS']
 //   perinom check SCENE [--set dotted.key=value]... [--max-memory SIZE] [--spectrum]
 //   perinom bench force --dimension 3 --n N [--threads T]
 //   perinom material-point [--test 1..7] [--substeps S] [--out DIR]
@@ -16,6 +17,7 @@
 
 #include "commands.hpp"
 #include "perinom/core/error.hpp"
+#include "perinom/solvers/petsc.hpp"
 
 namespace {
 
@@ -23,12 +25,25 @@ void usage() {
   std::fprintf(stderr,
                "usage:\n"
                "  perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N] [--keep] [--max-memory SIZE]\n"
-               "              [--restart DIR]\n"
+               "              [--restart DIR] [--petsc-options 'OPTIONS']\n"
                "  perinom check SCENE [--set dotted.key=value]... [--max-memory SIZE] [--spectrum]\n"
                "  perinom bench force --dimension 2|3 --n N [--threads T] [--stabilization C] [--storage auto|fused|assembled|matrix_free] [--single]\n"
                "  perinom bench refresh --dimension 2|3 --n N --bonds B [--threads T]\n"
                "  perinom material-point [--test 1..7] [--substeps S] [--out DIR]\n");
 }
+
+/// The ranks mpirun started (its environment says; 1 without it). perinom is not distributed
+/// yet: each of R ranks would solve the whole scene and write the same files.
+long mpi_ranks() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* v = std::getenv(name)) return std::strtol(v, nullptr, 10);
+  return 1;
+}
+
+/// Ends PETSc (and MPI) however main returns, if a solve started it.
+struct PetscEnd {
+  ~PetscEnd() { perinom::finalize_petsc(); }
+};
 
 }  // namespace
 
@@ -41,7 +56,12 @@ int main(int argc, char** argv) {
   }
   cli::Options opt;
   opt.command = args[0];
+  const PetscEnd petsc_end;
   try {
+    if (mpi_ranks() > 1)
+      throw InputError("perinom runs on one MPI rank: the distributed path is not built yet, and mpirun -np " +
+                       std::to_string(mpi_ranks()) + " would solve the whole scene on every rank (run it without "
+                       "mpirun; solver.linear_solver mumps or gamg uses PETSc on one rank)");
     for (std::size_t k = 1; k < args.size(); ++k) {
       const std::string& a = args[k];
       auto value = [&]() -> std::string {
@@ -85,6 +105,7 @@ int main(int argc, char** argv) {
       else if (a == "--single") opt.single_precision = true;
       else if (a == "--spectrum") opt.spectrum = true;
       else if (a == "--keep") opt.keep = true;
+      else if (a == "--petsc-options") set_petsc_options(value());
       else if (a == "--max-memory") {
         // A whole number of bytes, or of KiB, MiB, GiB, TiB with the suffix K, M, G or T.
         const std::string v = value();

@@ -97,7 +97,7 @@ Json newton_check(Problem& p, const std::vector<double>& u) {
   std::vector<double> un;
   const double t0 = wall_seconds();
   TerminalProgress progress("newton check");
-  const SolveReport rep = solve_newton(p.physics(), p.loading, newton_options(p.scene.solver), un, &progress);
+  const SolveReport rep = solve_newton(p.physics(), p.loading, newton_options(p), un, &progress);
   const double seconds = wall_seconds() - t0;
   // The model's stress measure (a plate's: its bending moments).
   const std::vector<double> s = p.physics().stress_measure(u.data()), sn = p.physics().stress_measure(un.data());

@@ -135,12 +135,13 @@ std::vector<SolverEntry> make_solvers() {
                       {"max_iterations", std::to_string(newton_defaults.max_iterations), ""},
                       {"load_steps", std::to_string(d.load_steps), ""},
                       {"line_search", d.line_search ? "true" : "false", ""},
+                      {"linear_solver", d.linear_solver, "klu | mumps | gamg (PETSc)"},
                       {"step_tolerance", text(d.step_tolerance), ""}},
                      newton_defaults, true, true);
   newton.jacobian = true;
   newton.iterations_of = "Newton";
   newton.solve = [](Problem& p, std::vector<double>& u, const SolveHooks& h) {
-    return solve_newton(p.physics(), p.loading, newton_options(p.scene.solver), u, h.progress);
+    return solve_newton(p.physics(), p.loading, newton_options(p), u, h.progress);
   };
   // One factorization of the reduced stiffness: linear, symmetric problems (direct.hpp).
   SolverSpec direct_defaults = d;
@@ -231,7 +232,29 @@ NewtonOptions newton_options(const SolverSpec& s) {
   o.load_steps = s.load_steps;
   o.line_search = s.line_search;
   o.step_tolerance = s.step_tolerance;
+  o.linear_solver = s.linear_solver;
   if (s.type == "newton") o.tolerance = s.tolerance, o.max_iterations = static_cast<int>(s.max_iterations);
+  return o;
+}
+
+namespace {
+/// GAMG's near-null space: a solid's rigid-body modes, from its particles' positions.
+void add_positions(NewtonOptions& o, const Problem& p) {
+  if (o.linear_solver != "gamg" || p.physics().dofs_per_particle() != p.cloud.dim) return;
+  o.positions = p.cloud.x;
+  o.dimension = p.cloud.dim;
+}
+}  // namespace
+
+NewtonOptions newton_options(const Problem& p) {
+  NewtonOptions o = newton_options(p.scene.solver);
+  add_positions(o, p);
+  return o;
+}
+
+LoadPathOptions load_path_options(const Problem& p) {
+  LoadPathOptions o = load_path_options(p.scene.solver);
+  add_positions(o.newton, p);
   return o;
 }
 
@@ -242,6 +265,7 @@ LoadPathOptions load_path_options(const SolverSpec& s) {
   o.adr.displacement_tolerance = s.displacement_tolerance;
   o.adr.max_iterations = s.max_iterations;
   o.newton.line_search = s.line_search;
+  o.newton.linear_solver = s.linear_solver;
   o.newton.step_tolerance = s.step_tolerance;
   if (s.type == "newton") o.newton.tolerance = s.tolerance, o.newton.max_iterations = static_cast<int>(s.max_iterations);
   o.yield_tolerance = s.yield_tolerance;
@@ -261,7 +285,7 @@ SolveReport solve_problem(Problem& p, std::vector<double>& u, const SolveHooks& 
   if (!entry) throw std::logic_error("solve_problem: solver.type " + spec.type + " is not registered");
   if (p.scene.load_path()) {
     if (!entry->load_path) throw std::logic_error("solve_problem: " + spec.type + " does not solve load paths");
-    return solve_load_path(p.physics(), p.stages, load_path_options(spec), u, h.progress, h.after_step,
+    return solve_load_path(p.physics(), p.stages, load_path_options(p), u, h.progress, h.after_step,
                            h.load_path_checkpoints, h.load_path_resume);
   }
   if (!entry->single) throw std::logic_error("solve_problem: " + spec.type + " solves load paths only");

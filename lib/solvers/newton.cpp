@@ -74,6 +74,7 @@ double reciprocal_pivot_ratio(SUNLinearSolver ls) {
 SolveReport solve_newton(TangentModel& model, const Loading& loading,
                          const NewtonOptions& opt, std::vector<double>& u, Progress* progress) {
   static_assert(sizeof(sunindextype) == sizeof(std::int64_t), "SUNDIALS must use 64-bit indices");
+  if (opt.linear_solver != "klu") return detail::solve_newton_petsc(model, loading, opt, u, progress);
   u.resize(model.dofs(), 0.0);
   StaticSystem system(model, loading);
   // The unknowns: u, then the multipliers of face-located constraints (kept across steps as

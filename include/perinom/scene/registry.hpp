@@ -121,6 +121,9 @@ AdrOptions adr_options(const SolverSpec& s);
 VerletOptions verlet_options(const SolverSpec& s);
 NewtonOptions newton_options(const SolverSpec& s);
 LoadPathOptions load_path_options(const SolverSpec& s);
+/// The same, with what the problem adds: the positions GAMG's near-null space is built from.
+NewtonOptions newton_options(const Problem& p);
+LoadPathOptions load_path_options(const Problem& p);
 
 /// Solves the problem by its scene's solver into u (resized to the model's dofs): a load
 /// path for Scene::load_path(), else the solver entry's single-loading solve.

@@ -2,6 +2,7 @@
 /// @file Newton's method on the assembled Jacobian: SUNDIALS KINSOL with the KLU sparse
 /// direct solver (THEORY sec. 8), the design's independent check of the explicit solvers.
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "perinom/core/progress.hpp"
@@ -17,6 +18,17 @@ struct NewtonOptions {
   int max_iterations = 50;        ///< per load step
   int load_steps = 1;
   bool line_search = true;
+  /// The linear solver of each Newton step: "klu" (KINSOL with KLU on the Jacobian with
+  /// multipliers), or through PETSc SNES on the Galerkin-reduced system K_T = T^T K T
+  /// (direct.hpp): "mumps" (MUMPS's multifrontal LU) or "gamg" (PETSc's algebraic multigrid
+  /// preconditioning conjugate gradients, GMRES for a model with history). The PETSc ones
+  /// need the Galerkin form of any face-located constraint (not the improved or strong
+  /// formulation) and a build with PETSc.
+  std::string linear_solver = "klu";
+  /// gamg: the particles' positions (point-major, dimension values each) of a solid, whose
+  /// rigid-body modes then form the near-null space; empty: PETSc's default (constants).
+  std::vector<double> positions;
+  int dimension = 0;
   /// Runs after each converged load step with its number, the Newton iterations it took and
   /// its relative residual (the plastic path commits here).
   std::function<void(int step, const std::vector<double>& u, long iterations, double residual)> after_step;
@@ -32,5 +44,12 @@ struct NewtonOptions {
 SolveReport solve_newton(TangentModel& model, const Loading& loading,
                          const NewtonOptions& options, std::vector<double>& u,
                          Progress* progress = nullptr);
+
+namespace detail {
+/// solve_newton with a PETSc linear solver (newton_petsc.cpp; the same report, with the
+/// linear iterations per load step in the history).
+SolveReport solve_newton_petsc(TangentModel& model, const Loading& loading, const NewtonOptions& options,
+                               std::vector<double>& u, Progress* progress);
+}  // namespace detail
 
 }  // namespace perinom

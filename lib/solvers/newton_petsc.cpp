@@ -1,0 +1,393 @@
+// Newton's method through PETSc SNES on the Galerkin-reduced static problem, with MUMPS or
+// GAMG for the linear steps (newton.hpp, NewtonOptions::linear_solver). Part of the PETSc
+// module libperinom_petsc.so (petsc_plugin.hpp), which libperinom loads on first use.
+#include <petscsnes.h>
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <memory>
+
+#include <Eigen/Dense>
+
+#include "galerkin.hpp"
+#include "perinom/core/error.hpp"
+#include "perinom/solvers/newton.hpp"
+#include "petsc_plugin.hpp"
+#include "petsc_session.hpp"
+
+namespace perinom::detail {
+namespace {
+
+static_assert(sizeof(PetscInt) == sizeof(int), "PETSc with 32-bit indices (RowSparse's)");
+
+/// A PETSc object released by its own destroy function.
+template <class T, PetscErrorCode (*destroy)(T*)>
+struct Owned {
+  T p = nullptr;
+  ~Owned() {
+    if (p) destroy(&p);
+  }
+};
+
+/// The reduced problem: u = T x + p(s) with x the free dofs, R(x) = T^T (f_int(u) - f_ext(s)),
+/// J(x) = T^T K(u) T. The prescribed part is affine in s (targets value0 + s value).
+struct Reduced {
+  TangentModel& model;
+  const Loading& loading;
+  Sparse T;
+  std::unique_ptr<TRows> rows;  // T by rows, for K_T's assembly
+  Eigen::VectorXd p0, dp;  // p(s) = p0 + s dp
+  double s = 0.0;
+  Eigen::VectorXd u, f;
+  bool assembled = false;  // the Jacobian's pattern is in the Mat
+  /// What a callback threw (an exception must not cross PETSc's C frames): SNESSolve then
+  /// returns an error, and the solve rethrows this instead.
+  std::exception_ptr error;
+
+  Reduced(TangentModel& m, const Loading& l) : model(m), loading(l) {
+    const std::size_t n = model.dofs();
+    const auto index = free_index(n, loading);
+    int free = 0;
+    for (const auto k : index) free += k >= 0 ? 1 : 0;
+    Reduction at0 = reduce(n, loading, index, free, 0.0);
+    const Reduction at1 = reduce(n, loading, index, free, 1.0);
+    T = std::move(at0.T);
+    rows = std::make_unique<TRows>(T, index);
+    p0 = Eigen::Map<const Eigen::VectorXd>(at0.prescribed.data(), static_cast<Eigen::Index>(n));
+    dp = Eigen::Map<const Eigen::VectorXd>(at1.prescribed.data(), static_cast<Eigen::Index>(n)) - p0;
+    u.resize(static_cast<Eigen::Index>(n));
+    f.resize(static_cast<Eigen::Index>(n));
+  }
+  PetscInt free() const { return static_cast<PetscInt>(T.cols()); }
+  void expand(const double* x) {
+    u = T * Eigen::Map<const Eigen::VectorXd>(x, T.cols()) + p0 + s * dp;
+  }
+  /// f = f_int(u) - f_ext(s) over every dof (u expanded already).
+  void force() {
+    model.follow_loads(loading, s);
+    model.internal_force(u.data(), f.data());
+    if (loading.has_force())
+      for (Eigen::Index k = 0; k < f.size(); ++k) f[k] -= loading.force_at(s, static_cast<std::size_t>(k));
+  }
+  void residual(const double* x, double* R) {
+    expand(x);
+    force();
+    Eigen::Map<Eigen::VectorXd>(R, T.cols()) = T.transpose() * f;
+  }
+  RowSparse jacobian(const double* x) {
+    expand(x);
+    model.prepare_tangent(u.data());
+    return reduced_stiffness(model, *rows);
+  }
+};
+
+PetscErrorCode residual_callback(SNES snes, Vec x, Vec r, void* ctx) {
+  auto* sys = static_cast<Reduced*>(ctx);
+  const PetscScalar* xa = nullptr;
+  PetscScalar* ra = nullptr;
+  PetscErrorCode e = VecGetArrayRead(x, &xa);
+  if (!e) e = VecGetArray(r, &ra);
+  if (e) return e;
+  try {
+    sys->residual(xa, ra);
+  } catch (...) {
+    sys->error = std::current_exception();
+  }
+  bool finite = true;
+  for (PetscInt k = 0; k < sys->free(); ++k) finite = finite && std::isfinite(ra[k]);
+  VecRestoreArray(r, &ra);
+  VecRestoreArrayRead(x, &xa);
+  if (sys->error) return PETSC_ERR_USER;
+  // A state whose force is not finite: SNES's line search steps back, or the solve stops.
+  return finite ? 0 : SNESSetFunctionDomainError(snes);
+}
+
+/// perinom's own stages in PETSc's -log_view: K_T from the tangent rows, and its copy into
+/// the Mat.
+struct Events {
+  PetscLogEvent assemble = 0, copy = 0;
+  Events() {
+    PetscClassId id = 0;
+    PetscClassIdRegister("perinom", &id);
+    PetscLogEventRegister("perinomKT", id, &assemble);
+    PetscLogEventRegister("perinomKTtoMat", id, &copy);
+  }
+};
+
+PetscErrorCode jacobian_callback(SNES, Vec x, Mat J, Mat, void* ctx) {
+  static const Events events;
+  auto* sys = static_cast<Reduced*>(ctx);
+  const PetscScalar* xa = nullptr;
+  PetscErrorCode e = VecGetArrayRead(x, &xa);
+  if (e) return e;
+  PetscLogEventBegin(events.assemble, 0, 0, 0, 0);
+  RowSparse A;
+  try {
+    A = sys->jacobian(xa);
+  } catch (...) {
+    sys->error = std::current_exception();
+  }
+  PetscLogEventEnd(events.assemble, 0, 0, 0, 0);
+  VecRestoreArrayRead(x, &xa);
+  if (sys->error) return PETSC_ERR_USER;
+  PetscLogEventBegin(events.copy, 0, 0, 0, 0);
+  const PetscInt* ptr = A.outerIndexPtr();
+  if (!sys->assembled) {
+    // The pattern: the tangent rows' (fixed for the run), preallocated exactly.
+    std::vector<PetscInt> lengths(static_cast<std::size_t>(A.rows()));
+    for (PetscInt r = 0; r < A.rows(); ++r) lengths[static_cast<std::size_t>(r)] = ptr[r + 1] - ptr[r];
+    e = MatXAIJSetPreallocation(J, 1, lengths.data(), nullptr, nullptr, nullptr);
+    if (!e) e = MatSetOption(J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE);
+    if (e) return e;
+    sys->assembled = true;
+  } else if ((e = MatZeroEntries(J))) {
+    return e;
+  }
+  for (PetscInt r = 0; r < A.rows() && !e; ++r)
+    e = MatSetValues(J, 1, &r, ptr[r + 1] - ptr[r], A.innerIndexPtr() + ptr[r], A.valuePtr() + ptr[r], INSERT_VALUES);
+  if (!e) e = MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY);
+  if (!e) e = MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY);
+  PetscLogEventEnd(events.copy, 0, 0, 0, 0);
+  return e;
+}
+
+/// The rigid-body modes of a solid over every dof: d translations, then the rotations
+/// (one in 2-D, three in 3-D) about the origin; empty when positions are not given or the
+/// model is not a solid (dofs per particle != dimension).
+std::vector<Eigen::VectorXd> rigid_body_modes(const NewtonOptions& opt, const TangentModel& model) {
+  const int d = opt.dimension;
+  if (opt.positions.empty() || d != model.dofs_per_particle() || opt.positions.size() != model.particles() * d)
+    return {};
+  const Eigen::Index n = static_cast<Eigen::Index>(model.dofs());
+  std::vector<Eigen::VectorXd> modes(d == 2 ? 3 : 6, Eigen::VectorXd::Zero(n));
+  for (std::size_t i = 0; i < model.particles(); ++i) {
+    const double* x = &opt.positions[i * d];
+    const Eigen::Index k = static_cast<Eigen::Index>(i * d);
+    for (int a = 0; a < d; ++a) modes[a][k + a] = 1.0;
+    if (d == 2) {
+      modes[2][k] = -x[1], modes[2][k + 1] = x[0];
+    } else {
+      modes[3][k + 1] = -x[2], modes[3][k + 2] = x[1];  // about x
+      modes[4][k] = x[2], modes[4][k + 2] = -x[0];      // about y
+      modes[5][k] = -x[1], modes[5][k + 1] = x[0];      // about z
+    }
+  }
+  return modes;
+}
+
+/// GAMG's near-null space in reduced coordinates (each mode's free entries), orthonormal.
+void set_near_null_space(Mat J, const Reduced& sys, const std::vector<Eigen::VectorXd>& modes) {
+  if (modes.empty()) return;
+  const Eigen::Index m = static_cast<Eigen::Index>(modes.size());
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(sys.T.cols(), m);
+  // T is the identity on the free dofs: a column's unit entry is its own dof.
+  for (Eigen::Index col = 0; col < sys.T.cols(); ++col)
+    for (Sparse::InnerIterator it(sys.T, col); it; ++it)
+      if (it.value() == 1.0)
+        for (Eigen::Index c = 0; c < m; ++c) B(col, c) = modes[c][it.row()];
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(B);
+  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(B.rows(), m);
+  std::vector<Vec> vecs(static_cast<std::size_t>(m), nullptr);
+  for (Eigen::Index c = 0; c < m; ++c) {
+    check(MatCreateVecs(J, &vecs[c], nullptr), "MatCreateVecs");
+    PetscScalar* a = nullptr;
+    check(VecGetArray(vecs[c], &a), "VecGetArray");
+    std::copy_n(Q.col(c).data(), B.rows(), a);
+    check(VecRestoreArray(vecs[c], &a), "VecRestoreArray");
+  }
+  MatNullSpace space = nullptr;
+  check(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(m), vecs.data(), &space),
+        "MatNullSpaceCreate");
+  check(MatSetNearNullSpace(J, space), "MatSetNearNullSpace");
+  MatNullSpaceDestroy(&space);
+  for (Vec& v : vecs) VecDestroy(&v);
+}
+
+/// The linear solver of each step: perinom's choice, then the user's PETSc options over it.
+void configure(SNES snes, Mat J, const Reduced& sys, const NewtonOptions& opt) {
+  KSP ksp = nullptr;
+  PC pc = nullptr;
+  check(SNESGetKSP(snes, &ksp), "SNESGetKSP");
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  // Elastic models (the consistent and classical formulations, the plate) have a symmetric
+  // tangent, plastic ones not.
+  const bool symmetric = !sys.model.history();
+  if (opt.linear_solver == "mumps") {
+    // Symmetric: MUMPS's LDL^T (half the work of LU). Told only "symmetric", not "positive
+    // definite": MUMPS's Cholesky (SYM = 1) took as long on the 101k-particle plate and does
+    // not detect null pivots, so a body free to move went unnamed.
+    if (symmetric) check(MatSetOption(J, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+    check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
+    check(PCSetType(pc, symmetric ? PCCHOLESKY : PCLU), "PCSetType");
+    check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+    // Null pivot detection (ICNTL(24)), so a singular stiffness is named as such (INFOG(28))
+    // rather than met as a Newton step that never converges.
+    PetscBool given = PETSC_FALSE;
+    check(PetscOptionsHasName(nullptr, nullptr, "-mat_mumps_icntl_24", &given), "PetscOptionsHasName");
+    if (!given) check(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_24", "1"), "PetscOptionsSetValue");
+  } else if (opt.linear_solver == "gamg") {
+    // Conjugate gradients for a symmetric tangent, GMRES otherwise. Each linear solve goes
+    // a decade below the Newton tolerance, so an elastic step needs one Newton iteration.
+    // Symmetric and, the supports holding every rigid mode, positive definite: told so,
+    // GAMG estimates its smoothers' eigenvalues by conjugate gradients (told only
+    // "symmetric", its set-up on the 101k-particle plate took 8.8 s instead of 2.1-6.6 s).
+    if (symmetric) check(MatSetOption(J, MAT_SPD, PETSC_TRUE), "MatSetOption");
+    check(KSPSetType(ksp, symmetric ? KSPCG : KSPGMRES), "KSPSetType");
+    // The tolerance on the true residual (CG's own norm, GMRES preconditioned on the right),
+    // not on the preconditioned one, which can be far smaller.
+    if (symmetric) check(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+    else check(KSPSetPCSide(ksp, PC_RIGHT), "KSPSetPCSide");
+    check(PCSetType(pc, PCGAMG), "PCSetType");
+    check(KSPSetTolerances(ksp, std::max(0.1 * opt.tolerance, 1e-14), PETSC_DEFAULT, PETSC_DEFAULT, 10000),
+          "KSPSetTolerances");
+    set_near_null_space(J, sys, rigid_body_modes(opt, sys.model));
+  } else {
+    throw InputError("solver.linear_solver: must be klu, mumps or gamg (got " + opt.linear_solver + ")");
+  }
+  SNESLineSearch ls = nullptr;
+  check(SNESGetLineSearch(snes, &ls), "SNESGetLineSearch");
+  check(SNESLineSearchSetType(ls, opt.line_search ? SNESLINESEARCHBT : SNESLINESEARCHBASIC), "SNESLineSearchSetType");
+  check(SNESSetTolerances(snes, 0.0, opt.tolerance, opt.step_tolerance, opt.max_iterations, -1), "SNESSetTolerances");
+  check(SNESSetFromOptions(snes), "SNESSetFromOptions");
+}
+
+/// MUMPS's count of null pivots in the last factorization, or -1 when it stopped on a
+/// numerically singular matrix (INFOG(1) = -10, as a Cholesky of one does); 0 otherwise and
+/// for another solver.
+PetscInt null_pivots(SNES snes, const NewtonOptions& opt) {
+  if (opt.linear_solver != "mumps") return 0;
+  KSP ksp = nullptr;
+  PC pc = nullptr;
+  Mat F = nullptr;
+  PetscInt count = 0, status = 0;
+  if (SNESGetKSP(snes, &ksp) || KSPGetPC(ksp, &pc) || PCFactorGetMatrix(pc, &F) || !F) return 0;
+  if (!MatMumpsGetInfog(F, 1, &status) && status == -10) return -1;
+  return MatMumpsGetInfog(F, 28, &count) ? 0 : count;
+}
+
+SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptions& opt, std::vector<double>& u,
+                  Progress* progress, const std::string& petsc_options) {
+  if (loading.collocated)
+    throw InputError("solver.linear_solver: " + opt.linear_solver +
+                     " solves the Galerkin-reduced system, and the improved and strong formulations collocate their "
+                     "constraints; use linear_solver klu");
+  start_petsc(petsc_options);
+  u.resize(model.dofs(), 0.0);
+  Reduced sys(model, loading);
+  if (sys.T.nonZeros() > std::numeric_limits<PetscInt>::max())
+    throw InputError("solver.linear_solver: the problem exceeds PETSc's 32-bit indices (libpetsc64-real3.18-dev has "
+                     "64-bit ones)");
+  SolveReport rep;
+  rep.history.columns = {"load_step", "load_factor", "newton_iterations", "residual", "linear_iterations"};
+  const int dpp = model.dofs_per_particle();
+  for (const auto& c : loading.reaction_columns(dpp)) rep.history.columns.push_back(c);
+  std::vector<double> reactions(loading.support_names.size() * dpp);
+
+  Owned<Vec, VecDestroy> x, r;
+  Owned<Mat, MatDestroy> J;
+  Owned<SNES, SNESDestroy> snes;
+  const PetscInt n = sys.free();
+  check(VecCreateMPI(PETSC_COMM_WORLD, n, PETSC_DETERMINE, &x.p), "VecCreateMPI");
+  check(VecDuplicate(x.p, &r.p), "VecDuplicate");
+  check(MatCreate(PETSC_COMM_WORLD, &J.p), "MatCreate");
+  check(MatSetSizes(J.p, n, n, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+  check(MatSetType(J.p, MATAIJ), "MatSetType");
+  check(SNESCreate(PETSC_COMM_WORLD, &snes.p), "SNESCreate");
+  check(SNESSetFunction(snes.p, r.p, residual_callback, &sys), "SNESSetFunction");
+  check(SNESSetJacobian(snes.p, J.p, J.p, jacobian_callback, &sys), "SNESSetJacobian");
+  configure(snes.p, J.p, sys, opt);
+  {
+    // The first guess: u's free entries (T is the identity on them).
+    PetscScalar* a = nullptr;
+    check(VecGetArray(x.p, &a), "VecGetArray");
+    for (Eigen::Index col = 0; col < sys.T.cols(); ++col)
+      for (Sparse::InnerIterator it(sys.T, col); it; ++it)
+        if (it.value() == 1.0) a[col] = u[static_cast<std::size_t>(it.row())];
+    check(VecRestoreArray(x.p, &a), "VecRestoreArray");
+  }
+
+  ProgressSample sample;
+  sample.limit = 0;
+  sample.load_steps = opt.load_steps;
+  std::vector<double> fint(model.dofs());
+  Owned<Vec, VecDestroy> x_start;
+  check(VecDuplicate(x.p, &x_start.p), "VecDuplicate");
+  for (int step = 1; step <= opt.load_steps; ++step) {
+    check(VecCopy(x.p, x_start.p), "VecCopy");
+    sys.s = static_cast<double>(step) / opt.load_steps;
+    const PetscErrorCode solved = SNESSolve(snes.p, nullptr, x.p);
+    if (sys.error) std::rethrow_exception(sys.error);
+    check(solved, "SNESSolve");
+    PetscInt iterations = 0, linear = 0;
+    SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+    SNESGetIterationNumber(snes.p, &iterations);
+    SNESGetLinearSolveIterations(snes.p, &linear);
+    SNESGetConvergedReason(snes.p, &reason);
+    rep.iterations += iterations;
+    if (const PetscInt nulls = null_pivots(snes.p, opt); nulls != 0)
+      throw InputError("Newton (PETSc): the stiffness is singular (MUMPS " +
+                       (nulls > 0 ? "found " + std::to_string(nulls) + " null pivots" : std::string("stopped: numerically singular")) +
+                       "): the body can move without deforming; a boundary condition is probably missing (fix enough "
+                       "components to stop rigid translation and rotation)");
+    // The residual as ADR measures it (as the KLU path reports it).
+    {
+      const PetscScalar* a = nullptr;
+      check(VecGetArrayRead(x.p, &a), "VecGetArrayRead");
+      sys.expand(a);
+      check(VecRestoreArrayRead(x.p, &a), "VecRestoreArrayRead");
+    }
+    sys.force();
+    const Eigen::VectorXd R = sys.T.transpose() * sys.f;
+    double reaction_norm = 0.0;
+    for (const auto dof : loading.fixed) {
+      const double fi = sys.f[static_cast<Eigen::Index>(dof)] + loading.force_at(sys.s, static_cast<std::size_t>(dof));
+      reaction_norm += fi * fi;
+    }
+    const double load = std::max(loading.force_norm(sys.s), std::sqrt(reaction_norm));
+    const double relative = load > 0.0 ? R.norm() / load : R.norm();
+    if (!std::isfinite(relative) || !std::isfinite(sys.u.norm())) {
+      check(VecCopy(x_start.p, x.p), "VecCopy");
+      rep.diverged = true;
+      rep.diverged_at = step;
+      rep.failure = "Newton (PETSc): the residual became NaN or Inf in load step " + std::to_string(step) +
+                    " (SNES reason " + SNESConvergedReasons[reason] + "); the last good state is load step " +
+                    std::to_string(step - 1);
+      break;
+    }
+    std::copy(sys.u.data(), sys.u.data() + sys.u.size(), u.begin());
+    rep.residual = relative;
+    rep.history.add({double(step), sys.s, double(iterations), relative, double(linear)});
+    if (loading.has_supports()) {
+      model.follow_loads(loading, sys.s);
+      model.internal_force(u.data(), fint.data());
+      loading.reactions(fint.data(), sys.s, dpp, reactions.data());
+      rep.history.values.insert(rep.history.values.end(), reactions.begin(), reactions.end());
+    }
+    if (progress) {
+      sample.iteration = rep.iterations, sample.load_step = step, sample.residual = relative;
+      progress->update(sample);
+    }
+    if (reason < 0) {
+      rep.failure = "Newton (PETSc): SNES stopped in load step " + std::to_string(step) + " with " +
+                    SNESConvergedReasons[reason];
+      if (reason == SNES_DIVERGED_LINEAR_SOLVE)
+        rep.failure += " (the linear solver " + opt.linear_solver +
+                       " failed: a singular stiffness, e.g. a missing boundary condition, or -ksp_max_it too low)";
+      break;
+    }
+    if (opt.after_step) opt.after_step(step, u, iterations, relative);
+  }
+  rep.converged = rep.failure.empty();
+  if (progress) progress->finish();
+  return rep;
+}
+
+}  // namespace
+}  // namespace perinom::detail
+
+extern "C" const perinom::detail::PetscPlugin* perinom_petsc_plugin() {
+  static const perinom::detail::PetscPlugin plugin{perinom::detail::solve, perinom::detail::end_petsc};
+  return &plugin;
+}

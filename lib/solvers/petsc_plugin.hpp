@@ -1,0 +1,25 @@
+#pragma once
+/// @file The PETSc module's entry (internal to lib/solvers): libperinom_petsc.so, built where
+/// PETSc is found, is loaded by libperinom only when a solve asks for PETSc, so PETSc, MPI and
+/// their libraries (about 30 MB resident, 130 shared objects) cost nothing to a scene that
+/// does not use them.
+#include <string>
+#include <vector>
+
+#include "perinom/solvers/newton.hpp"
+
+namespace perinom::detail {
+
+struct PetscPlugin {
+  /// solve_newton through PETSc SNES; `options` are the user's PETSc options, inserted before
+  /// PETSc reads any (PETSc starts at the first call).
+  SolveReport (*solve_newton)(TangentModel& model, const Loading& loading, const NewtonOptions& options,
+                              std::vector<double>& u, Progress* progress, const std::string& petsc_options);
+  /// Ends PETSc (and MPI) if a solve started it.
+  void (*finalize)();
+};
+
+}  // namespace perinom::detail
+
+/// The module's one exported symbol.
+extern "C" const perinom::detail::PetscPlugin* perinom_petsc_plugin();

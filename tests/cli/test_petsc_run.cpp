@@ -1,0 +1,38 @@
+// The program with PETSc: options passed through to the solver, and mpirun refused while
+// perinom is not distributed (each rank would solve the whole scene).
+#include <cstdlib>
+
+#include "../support/cli.hpp"
+
+// (No perinom header here: namespace perinom and cli_test::perinom would clash.)
+
+using namespace cli_test;
+
+TEST_CASE("PETSc options from the command line reach the Newton solve", "[cli][petsc]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << with(tiny_scene, "  type: adr\n", "  type: newton\n  linear_solver: gamg\n");
+  const Outcome o = perinom(dir, "run scene.yaml --petsc-options '-snes_monitor -ksp_converged_reason'");
+  INFO("stdout: " << o.out << "\nstderr: " << o.err);
+  if (o.err.find("built without PETSc") != std::string::npos) {  // a build without it refuses by name
+    CHECK(o.exit_code == 2);
+    return;
+  }
+  CHECK(o.exit_code == 0);
+  CHECK(o.out.find("SNES Function norm") != std::string::npos);
+  CHECK(o.out.find("Linear solve converged") != std::string::npos);
+  // A wrong option value is PETSc's to reject: the run stops with the solve failed (exit 3).
+  const Outcome bad = perinom(dir, "run scene.yaml --petsc-options '-ksp_type no_such_method'");
+  INFO("stderr: " << bad.err);
+  CHECK(bad.exit_code == 3);
+  CHECK(bad.err.find("no_such_method") != std::string::npos);
+}
+
+TEST_CASE("more than one MPI rank is refused with a clear message", "[cli][petsc]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  // What mpirun -np 2 puts into each rank's environment (Open MPI; MPICH sets PMI_SIZE).
+  setenv("OMPI_COMM_WORLD_SIZE", "2", 1);
+  const Outcome o = perinom(dir, "run scene.yaml");
+  unsetenv("OMPI_COMM_WORLD_SIZE");
+  require_one_clear_error(o, {"one MPI rank", "mpirun -np 2"});
+}
