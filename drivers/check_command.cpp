@@ -7,12 +7,36 @@
 #include "commands.hpp"
 #include "memory_estimate.hpp"
 #include "perinom/core/error.hpp"
+#include "perinom/neighbors/partition.hpp"
 #include "perinom/scene/problem.hpp"
 #include "perinom/scene/registry.hpp"
 #include "perinom/solvers/jacobian.hpp"
 #include "stability_check.hpp"
 
 namespace perinom::cli {
+namespace {
+
+/// What R ranks would own and need from each other, blocks of the Morton order (issue 19:
+/// the distributed path is not built; this is its partition, measured).
+void print_partition(const Problem& p, int ranks) {
+  const Families families = scene_families(p.scene, p.cloud);
+  const std::vector<RankShare> shares = partition_shares(families, morton_order(p.cloud), ranks);
+  std::size_t owned_lo = shares[0].owned, owned_hi = 0, one_lo = shares[0].ghosts_one, one_hi = 0, two_lo = shares[0].ghosts_two,
+              two_hi = 0, one = 0, two = 0, owned = 0;
+  for (const RankShare& s : shares) {
+    owned_lo = std::min(owned_lo, s.owned), owned_hi = std::max(owned_hi, s.owned);
+    one_lo = std::min(one_lo, s.ghosts_one), one_hi = std::max(one_hi, s.ghosts_one);
+    two_lo = std::min(two_lo, s.ghosts_two), two_hi = std::max(two_hi, s.ghosts_two);
+    one += s.ghosts_one, two += s.ghosts_two, owned += s.owned;
+  }
+  std::printf("  partition       %d ranks, contiguous blocks of a Morton curve: owned %zu-%zu particles;\n"
+              "                  ghosts within one horizon %zu-%zu (%.1f%% of the owned, mean), within two %zu-%zu (%.1f%%)\n",
+              ranks, owned_lo, owned_hi, one_lo, one_hi, 100.0 * double(one) / double(owned), two_lo, two_hi,
+              100.0 * double(two) / double(owned));
+}
+
+}  // namespace
+
 namespace {
 
 /// A body from a mesh or a point file: its elements, sizes against the horizon, groups.
@@ -114,6 +138,7 @@ int check(const Options& opt) {
     std::printf("  probe %-20s %s, %zu particle(s)\n", probe.spec.name.c_str(),
                 probe.spec.is_line ? "line" : "point", probe.particles.size());
   std::printf("  setup time      %.3f s\n", timer.total());
+  if (opt.ranks > 0) print_partition(p, opt.ranks);
   if (opt.spectrum) {
     std::fflush(stdout);
     print_spectrum(stiffness_spectrum(p.physics(), checked_loading(p)));

@@ -25,6 +25,7 @@ struct Options {
   int test = 2;                   ///< material-point: seed 000 Table 2 test
   int substeps = 1000;            ///< material-point: sub-steps of the reference
   bool spectrum = false;          ///< check: also the stability check (eigenvalues of M^-1 K)
+  int ranks = 0;                  ///< check: report a partition into this many ranks (0: none)
 };
 
 int run(const Options& opt);

@@ -1,7 +1,7 @@
 // perinom: the command line program.
 //   perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N] [--keep] [--max-memory SIZE] [--restart DIR]
 //               [--petsc-options 'OPTIONS']
-//   perinom check SCENE [--set dotted.key=value]... [--max-memory SIZE] [--spectrum]
+//   perinom check SCENE [--set dotted.key=value]... [--max-memory SIZE] [--spectrum] [--ranks R]
 //   perinom bench force --dimension 3 --n N [--threads T]
 //   perinom material-point [--test 1..7] [--substeps S] [--out DIR]
 // Exit codes: 0 success, 1 the solve did not converge, 2 bad input, 3 the solve failed.
@@ -26,7 +26,7 @@ void usage() {
                "usage:\n"
                "  perinom run SCENE [--out DIR] [--set dotted.key=value]... [--threads N] [--keep] [--max-memory SIZE]\n"
                "              [--restart DIR] [--petsc-options 'OPTIONS']\n"
-               "  perinom check SCENE [--set dotted.key=value]... [--max-memory SIZE] [--spectrum]\n"
+               "  perinom check SCENE [--set dotted.key=value]... [--max-memory SIZE] [--spectrum] [--ranks R]\n"
                "  perinom bench force --dimension 2|3 --n N [--threads T] [--stabilization C] [--storage auto|fused|assembled|matrix_free] [--single]\n"
                "  perinom bench refresh --dimension 2|3 --n N --bonds B [--threads T]\n"
                "  perinom material-point [--test 1..7] [--substeps S] [--out DIR]\n");
@@ -104,6 +104,7 @@ int main(int argc, char** argv) {
       else if (a == "--substeps") opt.substeps = static_cast<int>(integer(1, 100000000));
       else if (a == "--single") opt.single_precision = true;
       else if (a == "--spectrum") opt.spectrum = true;
+      else if (a == "--ranks") opt.ranks = static_cast<int>(integer(1, 1000000));
       else if (a == "--keep") opt.keep = true;
       else if (a == "--petsc-options") set_petsc_options(value());
       else if (a == "--max-memory") {

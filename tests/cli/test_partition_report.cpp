@@ -1,0 +1,17 @@
+// perinom check --ranks R: the partition the distributed path will use, reported.
+#include "../support/cli.hpp"
+
+using namespace cli_test;
+
+TEST_CASE("check --ranks reports each block's owned particles and ghosts", "[cli][partition]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  // 10 x 10 particles in two Morton blocks (the lower and upper halves): each needs the 3
+  // rows next to the cut, 30 particles within one horizon, 60 within two.
+  const Outcome o = perinom(dir, "check scene.yaml --ranks 2");
+  INFO("stdout: " << o.out << "\nstderr: " << o.err);
+  CHECK(o.exit_code == 0);
+  CHECK(o.out.find("partition       2 ranks, contiguous blocks of a Morton curve: owned 50-50 particles") != std::string::npos);
+  CHECK(o.out.find("ghosts within one horizon 30-30 (60.0% of the owned, mean), within two 50-50") != std::string::npos);
+  require_one_clear_error(perinom(dir, "check scene.yaml --ranks 0"), {"--ranks", "out of range"});
+}
