@@ -287,10 +287,12 @@ void read_solver(Fields f, Scene& s) {
   if (v.check != "none" && v.check != "newton") f.fail("check", "must be none or newton");
   if (v.check == "newton" && v.type != "adr" && v.type != "lbc")
     f.fail("check", "the Newton check compares static answers: it needs solver.type adr or lbc");
-  if (v.linear_solver != "klu" && !petsc_available())
+  // Only where a Newton solve will read it (other solvers ignore it, as other solvers' keys).
+  const bool petsc = v.linear_solver != "klu" && (newton || v.check == "newton");
+  if (petsc && !petsc_available())
     f.fail("linear_solver", v.linear_solver + " needs PETSc, and this perinom was built without it (install "
                             "petsc-dev and rebuild)");
-  if (v.linear_solver != "klu" && (s.model.formulation == "improved" || s.model.formulation == "strong"))
+  if (petsc && (s.model.formulation == "improved" || s.model.formulation == "strong"))
     f.fail("linear_solver", v.linear_solver + " solves the Galerkin-reduced system; the " + s.model.formulation +
                                 " formulation collocates its constraints: use klu");
   v.yield_tolerance = f.number("yield_tolerance", v.yield_tolerance);
