@@ -71,6 +71,16 @@ double reciprocal_pivot_ratio(SUNLinearSolver ls) {
 
 }  // namespace
 
+namespace detail {
+void append_reactions(TangentModel& model, const Loading& loading, double s, const double* u, std::vector<double>& fint,
+                      std::vector<double>& reactions, History& history) {
+  model.follow_loads(loading, s);
+  model.internal_force(u, fint.data());
+  loading.reactions(fint.data(), s, model.dofs_per_particle(), reactions.data());
+  history.values.insert(history.values.end(), reactions.begin(), reactions.end());
+}
+}  // namespace detail
+
 SolveReport solve_newton(TangentModel& model, const Loading& loading,
                          const NewtonOptions& opt, std::vector<double>& u, Progress* progress) {
   static_assert(sizeof(sunindextype) == sizeof(std::int64_t), "SUNDIALS must use 64-bit indices");
@@ -163,12 +173,7 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
     rep.residual = relative;
     R.resize(n);
     rep.history.add({double(step), data.s, double(iterations), rep.residual});
-    if (loading.has_supports()) {
-      model.follow_loads(loading, data.s);
-      model.internal_force(u.data(), fint.data());
-      loading.reactions(fint.data(), data.s, dpp, reactions.data());
-      rep.history.values.insert(rep.history.values.end(), reactions.begin(), reactions.end());
-    }
+    if (loading.has_supports()) detail::append_reactions(model, loading, data.s, u.data(), fint, reactions, rep.history);
     if (progress) {
       sample.iteration = rep.iterations, sample.load_step = step, sample.residual = rep.residual;
       progress->update(sample);

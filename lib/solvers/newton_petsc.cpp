@@ -359,12 +359,7 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
     std::copy(sys.u.data(), sys.u.data() + sys.u.size(), u.begin());
     rep.residual = relative;
     rep.history.add({double(step), sys.s, double(iterations), relative, double(linear)});
-    if (loading.has_supports()) {
-      model.follow_loads(loading, sys.s);
-      model.internal_force(u.data(), fint.data());
-      loading.reactions(fint.data(), sys.s, dpp, reactions.data());
-      rep.history.values.insert(rep.history.values.end(), reactions.begin(), reactions.end());
-    }
+    if (loading.has_supports()) append_reactions(model, loading, sys.s, u.data(), fint, reactions, rep.history);
     if (progress) {
       sample.iteration = rep.iterations, sample.load_step = step, sample.residual = relative;
       progress->update(sample);

@@ -46,6 +46,11 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
                          Progress* progress = nullptr);
 
 namespace detail {
+/// Appends the supports' reactions at u (load factor s) to the history's last row (both
+/// Newton paths); fint and reactions are the caller's scratch.
+void append_reactions(TangentModel& model, const Loading& loading, double s, const double* u, std::vector<double>& fint,
+                      std::vector<double>& reactions, History& history);
+
 /// solve_newton with a PETSc linear solver (newton_petsc.cpp; the same report, with the
 /// linear iterations per load step in the history).
 SolveReport solve_newton_petsc(TangentModel& model, const Loading& loading, const NewtonOptions& options,
