@@ -44,7 +44,8 @@ using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 
 /// K_T = T^T K T (K from the model's tangent rows at its last prepare_tangent), rows sorted,
 /// assembled from the rows in parallel: the same matrix as Sparse(T^T K T) without forming
-/// K (3.5-3.7 s against about 12 s on the 2-D plate at 101k particles, 2 threads).
+/// K (3.5-3.7 s against about 12 s on the 2-D plate at 101k particles, 2 threads). Throws
+/// InputError past 2^31 - 1 nonzeros (its indices, and PETSc's here, are 32-bit).
 RowSparse reduced_stiffness(const TangentModel& model, const TRows& t);
 
 }  // namespace perinom::detail

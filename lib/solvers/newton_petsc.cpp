@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <limits>
 #include <memory>
 
 #include <Eigen/Dense>
@@ -276,9 +275,6 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
   start_petsc(petsc_options);
   u.resize(model.dofs(), 0.0);
   Reduced sys(model, loading);
-  if (sys.T.nonZeros() > std::numeric_limits<PetscInt>::max())
-    throw InputError("solver.linear_solver: the problem exceeds PETSc's 32-bit indices (libpetsc64-real3.18-dev has "
-                     "64-bit ones)");
   SolveReport rep;
   rep.history.columns = {"load_step", "load_factor", "newton_iterations", "residual", "linear_iterations"};
   const int dpp = model.dofs_per_particle();

@@ -2,8 +2,12 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <string>
 
 #include "galerkin.hpp"
+#include "perinom/core/error.hpp"
 #include "perinom/core/parallel.hpp"
 
 namespace perinom::detail {
@@ -98,6 +102,11 @@ RowSparse reduced_stiffness(const TangentModel& model, const TRows& t) {
     acc.take(row);
   }
   // 3. CSR.
+  std::int64_t entries = 0;
+  for (const Row& row : rows) entries += static_cast<std::int64_t>(row.size());
+  if (entries > std::numeric_limits<int>::max())
+    throw InputError("the reduced stiffness has " + std::to_string(entries) +
+                     " nonzeros, more than 32-bit indices hold (2^31 - 1): use solver.type adr");
   RowSparse K(t.columns, t.columns);
   std::vector<int> start(rows.size() + 1, 0);
   for (std::size_t r = 0; r < rows.size(); ++r) start[r + 1] = start[r] + static_cast<int>(rows[r].size());
