@@ -144,9 +144,17 @@ void CorrespondenceModel::make_consistent(const PointCloud& cloud, const Familie
 
 void CorrespondenceModel::gradient(const double* u, double* H) const { G_.apply(u, dim_, H); }
 
+void CorrespondenceModel::limit_rows(std::size_t evaluated, std::size_t written) {
+  if (formulation_ != Formulation::classical)
+    throw std::logic_error("CorrespondenceModel::limit_rows: the classical formulation only");
+  if (written > evaluated || evaluated > particles())
+    throw std::logic_error("CorrespondenceModel::limit_rows: written > evaluated or evaluated > particles");
+  G_.limit_rows(evaluated, written);
+}
+
 void CorrespondenceModel::internal_force(const double* u, double* f) {
   const int d2 = dim_ * dim_;
-  const std::size_t n = particles();
+  const std::size_t n = G_.gradient_rows();  // particles() unless limit_rows
   if (S_) S_->gradient(u, H_.data());
   else G_.apply(u, dim_, H_.data());
   // S u = G^T(-B) + rest: -B joins V . P in the weak-form product.
@@ -183,6 +191,8 @@ void CorrespondenceModel::internal_force(const double* u, double* f) {
   }
   if (S_) S_->add_rest(u, H_.data(), f);
   if (follower_ && follower_->active()) follower_->add_force(H_.data(), f);
+  if (G_.transpose_rows() < particles())
+    std::fill(f + G_.transpose_rows() * dim_, f + particles() * dim_, 0.0);
 }
 
 void CorrespondenceModel::follow_loads(const Loading& loading, double s) {

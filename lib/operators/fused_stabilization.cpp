@@ -74,7 +74,7 @@ void FusedStabilization::gradient_and_laplacian(const double* u, double* H, doub
 
 void FusedStabilization::tensor_terms(const double* H, double* T) const {
   const int d = dim_, d2 = d * d;
-  const std::size_t n = cvK_.size() / d2;
+  const std::size_t n = G_->gradient_rows();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const double* h = H + i * d2;

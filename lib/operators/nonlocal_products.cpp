@@ -125,15 +125,15 @@ void NonlocalOperator::apply(const double* f, FieldLayout layout, double* out, D
   require(b.m > 0);
   const Offset* off = graph_->offsets().data();
   const ParticleId* col = graph_->cols().data();
-  if (!b.w32.empty()) return apply_with(b.m, rows(), off, col, b.w32.data(), f, layout, out);
-  apply_with(b.m, rows(), off, col, b.w.data(), f, layout, out);
+  if (!b.w32.empty()) return apply_with(b.m, gradient_rows(), off, col, b.w32.data(), f, layout, out);
+  apply_with(b.m, gradient_rows(), off, col, b.w.data(), f, layout, out);
 }
 
 void NonlocalOperator::apply_transpose(const double* q, FieldLayout layout, double* out,
                                        const std::vector<ParticleId>* subset, Derivative which) const {
   const Block& b = block(which);
   require(b.m > 0);
-  const std::size_t n = subset ? subset->size() : rows();
+  const std::size_t n = subset ? subset->size() : transpose_rows();
   const ParticleId* r = subset ? subset->data() : nullptr;
   const Offset* off = graph_->dual_offsets().data();
   const ParticleId* col = graph_->dual_cols().data();
@@ -143,7 +143,7 @@ void NonlocalOperator::apply_transpose(const double* q, FieldLayout layout, doub
 
 void NonlocalOperator::divergence(const double* q, FieldLayout layout, double* out,
                                   const std::vector<ParticleId>* subset) const {
-  const std::size_t n = subset ? subset->size() : rows();
+  const std::size_t n = subset ? subset->size() : transpose_rows();
   const ParticleId* r = subset ? subset->data() : nullptr;
   const Offset* off = graph_->offsets().data();
   const ParticleId* col = graph_->cols().data();
@@ -157,8 +157,8 @@ void NonlocalOperator::apply_with_laplacian(const double* f, const double* c, do
   namespace k = kernels;
   const Offset* off = graph_->offsets().data();
   const ParticleId* col = graph_->cols().data();
-  if (dim_ == 2) return k::gradient2<double, true>(rows(), off, col, grad_.w.data(), f, out, c, lap);
-  k::gradient3<double, true>(rows(), off, col, grad_.w.data(), f, out, c, lap);
+  if (dim_ == 2) return k::gradient2<double, true>(gradient_rows(), off, col, grad_.w.data(), f, out, c, lap);
+  k::gradient3<double, true>(gradient_rows(), off, col, grad_.w.data(), f, out, c, lap);
 }
 
 void NonlocalOperator::apply_with_laplacian(const double* f, const float* c, double* out, double* lap) const {
@@ -167,8 +167,8 @@ void NonlocalOperator::apply_with_laplacian(const double* f, const float* c, dou
   namespace k = kernels;
   const Offset* off = graph_->offsets().data();
   const ParticleId* col = graph_->cols().data();
-  if (dim_ == 2) return k::gradient2<float, true>(rows(), off, col, grad_.w32.data(), f, out, c, lap);
-  k::gradient3<float, true>(rows(), off, col, grad_.w32.data(), f, out, c, lap);
+  if (dim_ == 2) return k::gradient2<float, true>(gradient_rows(), off, col, grad_.w32.data(), f, out, c, lap);
+  k::gradient3<float, true>(gradient_rows(), off, col, grad_.w32.data(), f, out, c, lap);
 }
 
 }  // namespace perinom

@@ -123,6 +123,13 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// plus S. See for_each_tangent_row for the arguments of visit.
   void visit_tangent_rows(const TangentRowVisitor& visit) const override;
 
+  /// A distributed rank's local model (neighbors/local_part.hpp): internal_force evaluates
+  /// grad u and the law on the first `evaluated` particles (owned and near ghosts) and writes
+  /// the force of the first `written` (owned), zero on the others; only those rows are then
+  /// meaningful. The classical formulation only (the others' rows read the whole body):
+  /// throws std::logic_error else.
+  void limit_rows(std::size_t evaluated, std::size_t written);
+
   /// grad u at every particle (N x d x d), and the 3 x 3 Cauchy stress (N x 9): the law's
   /// at u from its committed states (PointwiseLaw::cauchy), nothing kept.
   void gradient(const double* u, double* H) const;

@@ -1,8 +1,10 @@
 #pragma once
 /// @file The nonlocal operator: the first-order gradient G, or the second-order gradient and
 /// Hessian from one quadratic fit, assembled on a bond graph (THEORY sec. 2, 3 and 6).
+#include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -94,6 +96,15 @@ class NonlocalOperator {
   /// M of a derivative: d for the gradient, hessian_terms() for the Hessian.
   int weights_per_bond(Derivative which) const { return block(which).m; }
   std::size_t rows() const { return graph_ ? graph_->rows() : 0; }
+  /// A distributed rank's local operator evaluates only its first rows (owned, then the ghosts
+  /// it reads, neighbors/local_part.hpp): apply (and apply_with_laplacian) writes the first
+  /// `gradient_rows`, apply_transpose and divergence without a subset the first
+  /// `transpose_rows`; the other rows of their outputs are left as they were. All rows by default.
+  void limit_rows(std::size_t gradient_rows, std::size_t transpose_rows) {
+    gradient_rows_ = gradient_rows, transpose_rows_ = transpose_rows;
+  }
+  std::size_t gradient_rows() const { return std::min(gradient_rows_, rows()); }
+  std::size_t transpose_rows() const { return std::min(transpose_rows_, rows()); }
   std::size_t bonds() const { return graph_ ? graph_->bonds() : 0; }
   WeightPrecision precision() const { return precision_; }
   const BondGraph& graph() const { return *graph_; }
@@ -212,6 +223,7 @@ class NonlocalOperator {
   void detach_row(std::size_t i);
 
   std::shared_ptr<const BondGraph> graph_;
+  std::size_t gradient_rows_ = SIZE_MAX, transpose_rows_ = SIZE_MAX;  // limit_rows
   int dim_ = 0, order_ = 1;
   WeightPrecision precision_ = WeightPrecision::float64;
   std::vector<double> x_, wv_;  // positions and w_ij V_j (row order): the inputs of a refresh
