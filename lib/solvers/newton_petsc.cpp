@@ -14,6 +14,7 @@
 #include "perinom/core/error.hpp"
 #include "perinom/solvers/newton.hpp"
 #include "petsc_plugin.hpp"
+#include "petsc_ranks.hpp"
 #include "petsc_session.hpp"
 
 namespace perinom::detail {
@@ -379,6 +380,8 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
 }  // namespace perinom::detail
 
 extern "C" const perinom::detail::PetscPlugin* perinom_petsc_plugin() {
-  static const perinom::detail::PetscPlugin plugin{perinom::detail::solve, perinom::detail::end_petsc};
+  using namespace perinom::detail;
+  static const PetscPlugin plugin{solve,        end_petsc, world,  halo_create, halo_update,
+                                  halo_destroy, reduce,    gather, barrier};
   return &plugin;
 }

@@ -53,14 +53,16 @@ bool& loaded() {
   return flag;
 }
 
-const detail::PetscPlugin& plugin_or_throw(const std::string& what) {
+}  // namespace
+
+namespace detail {
+const PetscPlugin& petsc_plugin(const std::string& what) {
   const Module& m = module();
   loaded() = true;
   if (!m.plugin) throw InputError(what + " needs PETSc, and " + m.why);
   return *m.plugin;
 }
-
-}  // namespace
+}  // namespace detail
 
 bool petsc_available() {
   loaded() = true;
@@ -68,7 +70,7 @@ bool petsc_available() {
 }
 
 void set_petsc_options(const std::string& options) {
-  plugin_or_throw("--petsc-options");
+  detail::petsc_plugin("--petsc-options");
   pending_options() = options;
 }
 
@@ -79,7 +81,7 @@ void finalize_petsc() {
 namespace detail {
 SolveReport solve_newton_petsc(TangentModel& model, const Loading& loading, const NewtonOptions& options,
                                std::vector<double>& u, Progress* progress) {
-  const PetscPlugin& p = plugin_or_throw("solver.linear_solver: " + options.linear_solver);
+  const PetscPlugin& p = petsc_plugin("solver.linear_solver: " + options.linear_solver);
   return p.solve_newton(model, loading, options, u, progress, pending_options());
 }
 }  // namespace detail

@@ -3,6 +3,8 @@
 /// PETSc is found, is loaded by libperinom only when a solve asks for PETSc, so PETSc, MPI and
 /// their libraries (about 30 MB resident, 130 shared objects) cost nothing to a scene that
 /// does not use them.
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,7 +19,20 @@ struct PetscPlugin {
                               std::vector<double>& u, Progress* progress, const std::string& petsc_options);
   /// Ends PETSc (and MPI) if a solve started it.
   void (*finalize)();
+
+  // The distributed path's communication (petsc_ranks.hpp); the first call starts PETSc.
+  void (*world)(int* rank, int* size);
+  void* (*halo_create)(std::size_t owned, const std::int64_t* ghosts, std::size_t count, int block,
+                       double* values);
+  void (*halo_update)(void* halo);
+  void (*halo_destroy)(void* halo);
+  void (*reduce)(double* values, int count, bool max);
+  void (*gather)(const double* owned, std::size_t count, double* root);
+  void (*barrier)();
 };
+
+/// The loaded module; throws InputError naming `what` when this build has no PETSc.
+const PetscPlugin& petsc_plugin(const std::string& what);
 
 }  // namespace perinom::detail
 
