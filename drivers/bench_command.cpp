@@ -1,7 +1,8 @@
 // perinom bench force: times the explicit force evaluation (G product, pointwise law,
 // transposed product, and the stabilization product) on an n^d simple-cubic lattice with
 // horizon ratio 3.015, measures this machine's STREAM-triad bandwidth, and ends with one
-// JSON object on the last line.
+// JSON object on the last line. Under mpirun, or with --check, the distributed force
+// (bench_distributed.cpp).
 #include <omp.h>
 
 #include <algorithm>
@@ -13,7 +14,9 @@
 #include <utility>
 #include <vector>
 
+#include "bench_model.hpp"
 #include "commands.hpp"
+#include "perinom/distributed/ranks.hpp"
 #include "perinom/core/error.hpp"
 #include "perinom/core/thread_governor.hpp"
 #include "perinom/core/timer.hpp"
@@ -44,12 +47,26 @@ double stream_triad_gbs() {
   return 3.0 * sizeof(double) * n / best / 1e9 + 0.0 * a[n / 2];
 }
 
-/// Seconds per call of f: after a warm-up call, at least 3 calls and 2 s. The calls are
-/// governed as a solver's iterations are (core/thread_governor.hpp; PERINOM_THREAD_GOVERNOR=off
-/// times the fixed team).
+/// Calls f under a governor until its first trial has chosen the thread count, which the
+/// governed loops started in the next 10 trial lengths keep: the timings that follow measure
+/// the choice, not the trial (whose iterations on one thread made a 2 s window of 300 ms
+/// evaluations mostly single-threaded).
+template <class F>
+void settle_governor(F&& f) {
+  ThreadGovernor governor;
+  while (governor.active() && governor.trials() < 1) {
+    governor.tick();
+    f();
+  }
+}
+
+/// Seconds per call of f: after a warm-up call and the governor's trial, at least 3 calls and
+/// 2 s. The calls are governed as a solver's iterations are (core/thread_governor.hpp;
+/// PERINOM_THREAD_GOVERNOR=off times the fixed team).
 template <class F>
 double seconds_per_call(F&& f) {
   f();
+  settle_governor(f);
   int calls = 0;
   ThreadGovernor governor;
   const double t0 = wall_seconds();
@@ -66,7 +83,7 @@ double seconds_per_call(F&& f) {
 /// timed between the observer's calls at iterations `first` and first + k (the stiffness row
 /// sums every explicit solver computes before its loop are not counted).
 template <class Solve>
-double seconds_per_iteration(const CorrespondenceModel& model, const PointCloud& cloud, long n,
+double seconds_per_iteration(CorrespondenceModel& model, const PointCloud& cloud, long n,
                              std::int64_t first, std::int64_t k, Solve&& solve) {
   const int d = cloud.dim;
   Loading loading;
@@ -77,6 +94,9 @@ double seconds_per_iteration(const CorrespondenceModel& model, const PointCloud&
       for (int a = 0; a < d; ++a) loading.fix(static_cast<std::int64_t>(i * d + a), 0.0);
     if (h > double(n) - 1.0) loading.force[i * d + d - 1] = -1e-3;
   }
+  // The solver's governor keeps the choice of a trial run just before (settle_governor).
+  std::vector<double> u0(model.dofs(), 0.0), f0(model.dofs());
+  settle_governor([&] { model.internal_force(u0.data(), f0.data()); });
   double t_first = 0.0, t_last = 0.0;
   Observer timing;
   timing.every = 1;
@@ -95,7 +115,7 @@ double seconds_per_iteration(const CorrespondenceModel& model, const PointCloud&
 int bench_refresh(const Options& opt, const PointCloud& cloud) {
   const int d = cloud.dim;
   // 1. The families and what a model assembles from them (radius families: fused S applies).
-  const Families fam = radius_families(cloud, 3.015);
+  const Families fam = radius_families(cloud, bench_horizon);
   auto graph = std::make_shared<BondGraph>(fam);
   const double modulus = 0.5 * 2.0 * 1.0;  // C_hg 2 mu
   auto build = [&] {
@@ -167,24 +187,14 @@ int bench(const Options& opt) {
   for (int a = 0; a < d; ++a) box.max[a] = double(opt.n);
   const PointCloud cloud = make_lattice(box, 1.0);
   if (opt.positional[0] == "refresh") return bench_refresh(opt, cloud);
+  if (mpirun_processes() > 1 || opt.check) return bench_force_distributed(opt, cloud);
   const double t0 = wall_seconds();
-  const Families fam = radius_families(cloud, 3.015);
-  LinearElastic mat;
-  mat.E = 1.0;
-  mat.nu = 0.25;
-  mat.density = 1.0;
-  mat.dim = d;
-  mat.plane = d == 2 ? PlaneCondition::strain : PlaneCondition::none;
-  CorrespondenceOptions copt;
-  copt.stabilization = opt.stabilization;
-  if (!parse_stabilization_storage(opt.storage, copt.stabilization_storage))
-    throw InputError("--storage must be auto, fused, assembled or matrix_free");
-  copt.weight_precision = opt.single_precision ? WeightPrecision::float32 : WeightPrecision::float64;
-  CorrespondenceModel model(cloud, fam, mat, copt);
+  const Families fam = radius_families(cloud, bench_horizon);
+  CorrespondenceModel model(cloud, fam, bench_material(d), bench_options(opt));
   const double setup = wall_seconds() - t0;
 
   std::vector<double> u(model.dofs()), f(model.dofs());
-  for (std::size_t k = 0; k < u.size(); ++k) u[k] = 1e-3 * std::sin(0.37 * k);
+  for (std::size_t k = 0; k < u.size(); ++k) u[k] = bench_displacement(k);
   const double per_eval = seconds_per_call([&] { model.internal_force(u.data(), f.data()); });
   // The two products alone, for the roofline (H and Q are the model's own sizes).
   std::vector<double> H(model.particles() * d * d), Q(H.size(), 1.0);

@@ -3,6 +3,10 @@
 #include <string>
 #include <vector>
 
+namespace perinom {
+struct PointCloud;
+}
+
 namespace perinom::cli {
 
 /// The most OpenMP threads --threads accepts (more than any machine perinom runs on has
@@ -26,11 +30,15 @@ struct Options {
   int substeps = 1000;            ///< material-point: sub-steps of the reference
   bool spectrum = false;          ///< check: also the stability check (eigenvalues of M^-1 K)
   int ranks = 0;                  ///< check: report a partition into this many ranks (0: none)
+  bool check = false;             ///< bench force: the distributed force against the serial one
 };
 
 int run(const Options& opt);
 int check(const Options& opt);
 int bench(const Options& opt);
 int material_point(const Options& opt);
+/// perinom bench force on the ranks mpirun started (one without it), the cloud split by
+/// local_part; --check compares the force with the serial one (exit 1 when it differs).
+int bench_force_distributed(const Options& opt, const PointCloud& cloud);
 
 }  // namespace perinom::cli

@@ -39,6 +39,8 @@ class ThreadGovernor {
   int threads() const { return current_; }
   /// How many trials have ended (with a choice).
   int trials() const { return trials_; }
+  /// False when inert (one thread, an outer governor, or PERINOM_THREAD_GOVERNOR=off).
+  bool active() const { return active_; }
   /// Drops the remembered choice: the next governor starts with a trial.
   static void forget();
 
