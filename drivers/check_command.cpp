@@ -7,20 +7,19 @@
 #include "commands.hpp"
 #include "memory_estimate.hpp"
 #include "perinom/core/error.hpp"
+#include "perinom/distributed/graph_partition.hpp"
 #include "perinom/neighbors/partition.hpp"
 #include "perinom/scene/problem.hpp"
 #include "perinom/scene/registry.hpp"
 #include "perinom/solvers/jacobian.hpp"
+#include "perinom/solvers/petsc.hpp"
 #include "stability_check.hpp"
 
 namespace perinom::cli {
 namespace {
 
-/// What R ranks would own and need from each other, blocks of the Morton order (issue 19:
-/// the distributed path is not built; this is its partition, measured).
-void print_partition(const Problem& p, int ranks) {
-  const Families families = scene_families(p.scene, p.cloud);
-  const std::vector<RankShare> shares = partition_shares(families, morton_order(p.cloud), ranks);
+/// One partition's line: owned, ghosts within one and two horizons (least-most, mean share).
+void print_shares(const char* label, const std::vector<RankShare>& shares) {
   std::size_t owned_lo = shares[0].owned, owned_hi = 0, one_lo = shares[0].ghosts_one, one_hi = 0, two_lo = shares[0].ghosts_two,
               two_hi = 0, one = 0, two = 0, owned = 0;
   for (const RankShare& s : shares) {
@@ -29,10 +28,21 @@ void print_partition(const Problem& p, int ranks) {
     two_lo = std::min(two_lo, s.ghosts_two), two_hi = std::max(two_hi, s.ghosts_two);
     one += s.ghosts_one, two += s.ghosts_two, owned += s.owned;
   }
-  std::printf("  partition       %d ranks, contiguous blocks of a Morton curve: owned %zu-%zu particles;\n"
+  std::printf("  %-15s %s: owned %zu-%zu particles;\n"
               "                  ghosts within one horizon %zu-%zu (%.1f%% of the owned, mean), within two %zu-%zu (%.1f%%)\n",
-              ranks, owned_lo, owned_hi, one_lo, one_hi, 100.0 * double(one) / double(owned), two_lo, two_hi,
+              "", label, owned_lo, owned_hi, one_lo, one_hi, 100.0 * double(one) / double(owned), two_lo, two_hi,
               100.0 * double(two) / double(owned));
+}
+
+/// What R ranks would own and need from each other (issue 19): contiguous blocks of the
+/// Morton order (the distributed force's partition) and PT-Scotch's partition of the bond
+/// graph, where this build has PETSc.
+void print_partition(const Problem& p, int ranks) {
+  const Families families = scene_families(p.scene, p.cloud);
+  std::printf("  partition       %d ranks\n", ranks);
+  print_shares("contiguous blocks of a Morton curve", partition_shares(families, morton_order(p.cloud), ranks));
+  if (petsc_available()) print_shares("PT-Scotch on the bond graph", rank_shares(families, scotch_partition(families, ranks), ranks));
+  else std::printf("                  PT-Scotch: not in this build (no PETSc)\n");
 }
 
 }  // namespace

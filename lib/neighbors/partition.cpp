@@ -43,12 +43,27 @@ std::vector<ParticleId> morton_order(const PointCloud& cloud) {
   return order;
 }
 
-std::vector<RankShare> partition_shares(const Families& f, const std::vector<ParticleId>& order, int ranks) {
-  const std::size_t n = f.particles();
-  if (ranks < 1 || order.size() != n) throw std::invalid_argument("partition_shares: ranks < 1 or an order of another size");
+std::vector<int> block_ranks(const std::vector<ParticleId>& order, int ranks) {
+  const std::size_t n = order.size();
+  if (ranks < 1) throw std::invalid_argument("block_ranks: ranks < 1");
   std::vector<int> rank_of(n, 0);
   for (int r = 0; r < ranks; ++r)
     for (std::size_t k = n * r / ranks; k < n * (r + 1) / ranks; ++k) rank_of[order[k]] = r;
+  return rank_of;
+}
+
+std::vector<RankShare> partition_shares(const Families& f, const std::vector<ParticleId>& order, int ranks) {
+  if (order.size() != f.particles()) throw std::invalid_argument("partition_shares: an order of another size");
+  return rank_shares(f, block_ranks(order, ranks), ranks);
+}
+
+std::vector<RankShare> rank_shares(const Families& f, const std::vector<int>& rank_of, int ranks) {
+  const std::size_t n = f.particles();
+  if (ranks < 1 || rank_of.size() != n) throw std::invalid_argument("rank_shares: ranks < 1 or ranks for another size");
+  for (const int r : rank_of)
+    if (r < 0 || r >= ranks) throw std::invalid_argument("rank_shares: a rank outside 0..ranks-1");
+  std::vector<std::vector<ParticleId>> members(static_cast<std::size_t>(ranks));
+  for (std::size_t i = 0; i < n; ++i) members[static_cast<std::size_t>(rank_of[i])].push_back(static_cast<ParticleId>(i));
   // Each particle's readers' neighbours: its family and its dual family (bonds j -> i).
   const DualSupport dual = dual_support(f);
   const auto visit = [&](std::size_t i, auto&& fn) {
@@ -60,11 +75,10 @@ std::vector<RankShare> partition_shares(const Families& f, const std::vector<Par
   std::vector<ParticleId> ring;
   for (int r = 0; r < ranks; ++r) {
     RankShare& s = shares[static_cast<std::size_t>(r)];
-    const std::size_t first = n * r / ranks, last = n * (r + 1) / ranks;
-    s.owned = last - first;
+    s.owned = members[static_cast<std::size_t>(r)].size();
     ring.clear();
-    for (std::size_t k = first; k < last; ++k)
-      visit(order[k], [&](ParticleId j) {
+    for (const ParticleId i : members[static_cast<std::size_t>(r)])
+      visit(i, [&](ParticleId j) {
         if (rank_of[j] != r && mark[j] != 2 * r) mark[j] = 2 * r, ring.push_back(j);
       });
     s.ghosts_one = ring.size();

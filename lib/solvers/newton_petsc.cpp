@@ -13,6 +13,7 @@
 #include "galerkin.hpp"
 #include "perinom/core/error.hpp"
 #include "perinom/solvers/newton.hpp"
+#include "petsc_partition.hpp"
 #include "petsc_plugin.hpp"
 #include "petsc_ranks.hpp"
 #include "petsc_session.hpp"
@@ -382,6 +383,6 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
 extern "C" const perinom::detail::PetscPlugin* perinom_petsc_plugin() {
   using namespace perinom::detail;
   static const PetscPlugin plugin{solve,        end_petsc, world,  halo_create, halo_update,
-                                  halo_destroy, reduce,    gather, barrier};
+                                  halo_destroy, reduce,    gather, barrier,     partition_graph};
   return &plugin;
 }

@@ -29,6 +29,9 @@ struct PetscPlugin {
   void (*reduce)(double* values, int count, bool max);
   void (*gather)(const double* owned, std::size_t count, double* root);
   void (*barrier)();
+  /// PT-Scotch on a symmetric graph (petsc_partition.hpp).
+  void (*partition_graph)(std::size_t n, const std::int64_t* offsets, const std::int32_t* cols, int parts,
+                          int* rank_of);
 };
 
 /// The loaded module; throws InputError naming `what` when this build has no PETSc.

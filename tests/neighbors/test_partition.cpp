@@ -69,3 +69,26 @@ TEST_CASE("a Morton order keeps blocks compact", "[neighbors][partition]") {
   const auto shares = partition_shares(f, morton_order(cloud), 4);
   for (const RankShare& s : shares) CHECK(s.ghosts_one == 124);
 }
+
+TEST_CASE("any partition's ghosts are counted as for the Morton blocks", "[neighbors][partition]") {
+  // rank_shares for an arbitrary assignment (round robin: every rank's ghosts are nearly
+  // everyone) against the brute-force sets.
+  const PointCloud cloud = test::lattice(2, 13, 0.2, 4);
+  const Families f = radius_families(cloud, 3.015);
+  const int ranks = 3;
+  std::vector<int> rank_of(cloud.size());
+  std::vector<ParticleId> order;
+  for (int r = 0; r < ranks; ++r)
+    for (std::size_t i = 0; i < cloud.size(); ++i)
+      if (int(i % ranks) == r) rank_of[i] = r, order.push_back(ParticleId(i));
+  const auto shares = rank_shares(f, rank_of, ranks);
+  std::size_t first = 0;
+  for (int r = 0; r < ranks; ++r) {
+    const auto [one, two] = brute_ghosts(f, order, first, first + shares[r].owned);
+    CHECK(shares[r].ghosts_one == one);
+    CHECK(shares[r].ghosts_two == two);
+    first += shares[r].owned;
+  }
+  CHECK(first == cloud.size());
+  CHECK_THROWS_AS(rank_shares(f, std::vector<int>(cloud.size(), ranks), ranks), std::invalid_argument);
+}

@@ -1,8 +1,9 @@
 #pragma once
-/// @file Splitting particles over ranks, as the distributed path (issue 19) will: an order
-/// along a space-filling curve cut into contiguous blocks, and what each block would need
-/// from the others (its ghosts). Nothing here is distributed; `perinom check --ranks R`
-/// reports it for a scene.
+/// @file Splitting particles over ranks (issue 19): an order along a space-filling curve
+/// cut into contiguous blocks (the distributed force's partition, local_part.hpp), and what
+/// each rank of any partition needs from the others (its ghosts); `perinom check --ranks R`
+/// reports it for a scene, beside PT-Scotch's partition of the bond graph
+/// (distributed/graph_partition.hpp).
 #include <cstddef>
 #include <vector>
 
@@ -24,8 +25,15 @@ struct RankShare {
   std::size_t owned = 0, ghosts_one = 0, ghosts_two = 0;
 };
 
-/// `order` cut into `ranks` contiguous blocks whose sizes differ by at most one; the
-/// ghosts of each from the families (bonds i -> j) and their transposes.
+/// The rank of each particle when `order` is cut into `ranks` contiguous blocks whose sizes
+/// differ by at most one.
+std::vector<int> block_ranks(const std::vector<ParticleId>& order, int ranks);
+
+/// Each rank's share for the rank of each particle (`rank_of`, values in 0..ranks-1): its
+/// ghosts from the families (bonds i -> j) and their transposes.
+std::vector<RankShare> rank_shares(const Families& families, const std::vector<int>& rank_of, int ranks);
+
+/// The same for `order` cut into blocks (block_ranks).
 std::vector<RankShare> partition_shares(const Families& families, const std::vector<ParticleId>& order, int ranks);
 
 }  // namespace perinom
