@@ -10,6 +10,7 @@
 
 #include "../support/clouds.hpp"
 #include "../support/refresh.hpp"
+#include "perinom/geometry/lattice.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/neighbors/local_part.hpp"
 #include "perinom/neighbors/partition.hpp"
@@ -94,6 +95,28 @@ TEST_CASE("a model on a rank's local part gives the serial force on its owned ro
         }
     }
   }
+}
+
+TEST_CASE("the local parts stay exact around a hole and on a slender strip", "[neighbors][partition]") {
+  // Where a part is weakest: families cut by a hole (a rank's block borders it), and a strip
+  // 40 x 4 cut by the curve into short blocks whose ghosts outnumber their owned particles.
+  const CorrespondenceOptions o{Influence::inverse_square, 0.5, Formulation::classical};
+  PointCloud holed = test::lattice(2, 24, 0.2, 9), kept;
+  kept.dim = 2, kept.dx = holed.dx, kept.spacing = holed.spacing;
+  for (std::size_t i = 0; i < holed.size(); ++i) {
+    const double* p = holed.point(i);
+    if (std::hypot(p[0] - 12.0, p[1] - 12.0) < 5.0) continue;
+    kept.x.insert(kept.x.end(), p, p + 2);
+    kept.volume.push_back(holed.volume[i]);
+  }
+  BoxGeometry strip;
+  strip.dim = 2, strip.max[0] = 40.0, strip.max[1] = 4.0;
+  const PointCloud slender = make_lattice(strip, 1.0, 0.1, 3);
+  for (const PointCloud* cloud : {static_cast<const PointCloud*>(&kept), &slender})
+    for (const int ranks : {2, 3, 7}) {
+      INFO((cloud == &kept ? "hole, " : "strip, ") << ranks << " ranks");
+      check_parts(*cloud, o, ranks, true);
+    }
 }
 
 TEST_CASE("without the far ghosts the near rows, and so the owned force, are wrong", "[neighbors][partition]") {
