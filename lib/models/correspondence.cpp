@@ -200,7 +200,8 @@ void CorrespondenceModel::follow_loads(const Loading& loading, double s) {
 }
 
 double CorrespondenceModel::energy(const double* u) {
-  const std::size_t n = particles();
+  // The written rows' share (all particles, unless limit_rows): a local part's own energy.
+  const std::size_t n = G_.transpose_rows();
   G_.apply(u, dim_, H_.data());
   double* psi = Q_.data();  // the energy densities (Q_ is scratch here)
   for_each_law_block(n, [&](std::size_t lo, std::size_t hi) { law_->energies(lo, hi, H_.data(), psi); });
@@ -208,7 +209,7 @@ double CorrespondenceModel::energy(const double* u) {
   double w = parallel_sums<1>(n, [&](std::size_t i, double* acc) { acc[0] += volume_[i] * psi[i]; })[0];
   if (S_) {
     S_->apply(u, H_.data(), Su_.data());  // W_s = 1/2 u . S u
-    for (std::size_t k = 0; k < Su_.size(); ++k) w += 0.5 * u[k] * Su_[k];
+    for (std::size_t k = 0; k < n * dim_; ++k) w += 0.5 * u[k] * Su_[k];
   }
   return w;
 }

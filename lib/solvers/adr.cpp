@@ -4,8 +4,8 @@
 #include <stdexcept>
 
 #include "perinom/core/error.hpp"
+#include "perinom/core/parallel.hpp"
 #include "perinom/core/thread_governor.hpp"
-#include "perinom/solvers/vector_ops.hpp"
 
 namespace perinom {
 
@@ -43,6 +43,7 @@ void AdrRelaxation::add_reactions(const Loading& loading, double s, History& his
   const std::size_t at = history.values.size();
   history.values.resize(at + loading.support_names.size() * dpp);
   loading.reactions(fint_.data(), s, dpp, history.values.data() + at);
+  model_.sum_across_ranks(history.values.data() + at, int(history.values.size() - at));
 }
 
 bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double>& u,
@@ -56,7 +57,11 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
   auto& f = f_;
   auto& f_old = f_old_;
   const auto& inv_lambda = inv_lambda_;
-  const double force_norm = loading.force_norm(s);
+  // Every sum below is over this process's dofs, then over the ranks (Model::sum_across_ranks).
+  double force_norm2 = loading.force_norm(s);
+  force_norm2 *= force_norm2;
+  model_.sum_across_ranks(&force_norm2, 1);
+  const double force_norm = std::sqrt(force_norm2);
   const bool forced = loading.has_force();
 
   // Residual force F = f_ext(s) - f_int on the free dofs; returns the relative residual.
@@ -66,7 +71,11 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     for (const auto dof : loading.fixed) reaction2 += fint_[dof] * fint_[dof];
     parallel_for(n, [&](std::size_t k) { f[k] = (forced ? loading.force_at(s, k) : 0.0) - fint_[k]; });
     loading.reduce(f.data());
-    const double fnorm = norm(f);
+    const double* fp = f.data();
+    double sums[2] = {reaction2, parallel_sums<1>(n, [fp](std::size_t k, double* a) { a[0] += fp[k] * fp[k]; })[0]};
+    model_.sum_across_ranks(sums, 2);
+    reaction2 = sums[0];
+    const double fnorm = std::sqrt(sums[1]);
     if (!std::isfinite(fnorm) || !std::isfinite(reaction2))
       throw DivergenceError("ADR: the internal force became NaN or Inf at iteration " +
                             std::to_string(rep.iterations + 1), rep.iterations + 1);
@@ -103,10 +112,12 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
       parallel_for(n, [&](std::size_t k) { v[k] = 0.5 * f[k] * inv_lambda[k]; });
     } else {
       // Damping from the local diagonal stiffness (Rayleigh quotient over u).
-      const auto [num, den] = parallel_sums<2>(n, [&](std::size_t k, double* acc) {
+      auto quotient = parallel_sums<2>(n, [&](std::size_t k, double* acc) {
         acc[1] += u[k] * u[k];
         if (v[k] != 0.0) acc[0] += u[k] * u[k] * (-(f[k] - f_old[k]) * inv_lambda[k] / v[k]);
       });
+      model_.sum_across_ranks(quotient.data(), 2);
+      const auto [num, den] = quotient;
       c = (num > 0.0 && den > 0.0) ? 2.0 * std::sqrt(num / den) : 0.0;
       c = std::min(c, 1.999);
       const double keep = (2.0 - c) / (2.0 + c), push = 2.0 / (2.0 + c);
@@ -115,13 +126,16 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     first = false;
     loading.zero_fixed(v.data());
     // last_good_: the state of the previous iteration, the last one that passed the guard.
-    const double du2 = parallel_sums<1>(n, [&](std::size_t k, double* acc) {
+    double moved[2] = {parallel_sums<1>(n, [&](std::size_t k, double* acc) {
       last_good_[k] = u[k];
       u[k] += v[k];
       acc[0] += v[k] * v[k];
-    })[0];
+    })[0], 0.0};
     if (loading.coupled_constraints()) loading.impose(s, u.data());
-    const double un = norm(u);
+    const double* up = u.data();
+    moved[1] = parallel_sums<1>(n, [up](std::size_t k, double* a) { a[0] += up[k] * up[k]; })[0];
+    model_.sum_across_ranks(moved, 2);
+    const double du2 = moved[0], un = std::sqrt(moved[1]);
     du = un > 0.0 ? std::sqrt(du2) / un : std::sqrt(du2);
     f_old.swap(f);
     try {

@@ -18,6 +18,7 @@ double stable_time_step(const Model& model) {
   const auto mass = model.lumped_mass();
   double w2 = 0.0;
   for (std::size_t k = 0; k < rows.size(); ++k) w2 = std::max(w2, rows[k] / mass[k]);
+  model.max_across_ranks(&w2, 1);
   return 2.0 / std::sqrt(w2);
 }
 
@@ -62,7 +63,9 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     const double T = opt.ramp_time;
     return T > 0.0 ? (t < T ? 0.5 * t * t / T : t - 0.5 * T) : t;
   };
-  double work = 0.0;  // external work, trapezoidal in time
+  // External work, trapezoidal in time: over this process's dofs (the history row sums it
+  // over the ranks).
+  double work = 0.0;
   auto diverged = [&](std::int64_t step, const std::string& what) {
     return DivergenceError("Verlet: " + what + " became NaN or Inf at step " + std::to_string(step), step);
   };
@@ -73,10 +76,13 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     const double s = factor(t);
     parallel_for(n, [&](std::size_t k) { a[k] = (fext ? s * fext[k] : 0.0) - fint[k]; });
     loading.reduce(a.data());
-    const auto [a2, u2, v2] = parallel_sums<3>(n, [&](std::size_t k, double* acc) {
+    auto sums = parallel_sums<3>(n, [&](std::size_t k, double* acc) {
       a[k] *= inv_mass[k];
       acc[0] += a[k] * a[k], acc[1] += u[k] * u[k], acc[2] += v[k] * v[k];
     });
+    // Over the ranks too: every rank stops at the same step.
+    model.sum_across_ranks(sums.data(), 3);
+    const auto [a2, u2, v2] = sums;
     if (!std::isfinite(a2 + u2 + v2)) throw diverged(step, "the internal force or the state");
   };
   auto accelerate = [&](std::int64_t step, double t) {
@@ -88,20 +94,24 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   double e0 = 0.0, e_max = 0.0, w_max = 0.0;
   std::vector<double> row;
   auto energies = [&](std::int64_t step, double t) {
-    const double kin = parallel_sums<1>(n, [&](std::size_t k, double* acc) {
+    double kin = parallel_sums<1>(n, [&](std::size_t k, double* acc) {
       acc[0] += 0.5 * v[k] * v[k] / inv_mass[k];
     })[0];
-    const double strain = model.energy(u.data());
-    row.assign({double(step), t, kin, strain, work, kin + strain + released - work});
+    double strain = model.energy(u.data());
+    row.assign({double(step), t, kin, strain, work, 0.0});
     row.resize(6 + supports + extra);
     // fint is the force at this state (accelerate ran on it): the supports' static reaction.
     if (supports > 0) loading.reactions(fint.data(), factor(t), dpp, row.data() + 6);
+    model.sum_across_ranks(row.data() + 2, int(3 + supports));
+    const double all_work = row[4];
+    kin = row[2], strain = row[3];
+    row[5] = kin + strain + released - all_work;
     if (changes) row[6 + supports] = double(changed), row[7 + supports] = released;
     for (const double x : row)
       if (!std::isfinite(x)) throw diverged(step, "an energy or a reaction");
     if (step == 0) e0 = kin + strain;
-    e_max = std::max(e_max, kin + strain), w_max = std::max(w_max, std::abs(work));
-    const double defect = std::abs(kin + strain + released - e0 - work);
+    e_max = std::max(e_max, kin + strain), w_max = std::max(w_max, std::abs(all_work));
+    const double defect = std::abs(kin + strain + released - e0 - all_work);
     const double bound = opt.energy_tolerance * std::max(e_max, w_max) + opt.energy_floor;
     if (opt.energy_check && defect > bound) {
       char what[640];
@@ -110,7 +120,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
                     "%.4e J against %.4e J initial plus %.4e J of external work, off by %.3e J, more than %g times "
                     "the largest energy or work so far (the discrete problem gains energy: an unstable formulation "
                     "or time step; solver.energy_check: false turns this guard off)",
-                    static_cast<long long>(step), t, kin + strain, e0, work, defect, opt.energy_tolerance);
+                    static_cast<long long>(step), t, kin + strain, e0, all_work, defect, opt.energy_tolerance);
       throw SolveError(what);
     }
   };

@@ -125,8 +125,8 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
 
   /// A distributed rank's local model (neighbors/local_part.hpp): internal_force evaluates
   /// grad u and the law on the first `evaluated` particles (owned and near ghosts) and writes
-  /// the force of the first `written` (owned), zero on the others; only those rows are then
-  /// meaningful. The classical formulation only (the others' rows read the whole body):
+  /// the force of the first `written` (owned), zero on the others, and energy() sums the
+  /// written particles' share; only those rows are then meaningful. The classical formulation only (the others' rows read the whole body):
   /// throws std::logic_error else.
   void limit_rows(std::size_t evaluated, std::size_t written);
 

@@ -49,6 +49,12 @@ class Model {
   /// model itself carries (follower pressures); most models carry none.
   virtual void follow_loads(const Loading& loading, double s) { (void)loading, (void)s; }
 
+  /// The solvers' reductions for a model spread over MPI ranks (distributed/distributed_model.hpp):
+  /// `values` holds this process's partial sums (maxima), over its own particles, and receives
+  /// the totals over all ranks. A model on one process has nothing to add.
+  virtual void sum_across_ranks(double* values, int count) const { (void)values, (void)count; }
+  virtual void max_across_ranks(double* values, int count) const { (void)values, (void)count; }
+
   /// The path-dependent state a load path commits (model_history.hpp), or nullptr for a
   /// model whose answer depends on u alone (elastic).
   virtual ModelHistory* history() { return nullptr; }
