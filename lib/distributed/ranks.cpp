@@ -49,6 +49,14 @@ double max_over_ranks(double v) {
   return v;
 }
 
+void sum_over_ranks(double* values, int count) {
+  if (const detail::PetscPlugin* p = distributed()) p->reduce(values, count, false);
+}
+
+void max_over_ranks(double* values, int count) {
+  if (const detail::PetscPlugin* p = distributed()) p->reduce(values, count, true);
+}
+
 std::vector<double> gather_on_root(const std::vector<double>& mine) {
   const detail::PetscPlugin* p = distributed();
   if (!p) return mine;

@@ -37,6 +37,9 @@ class Halo {
 /// The sum (or the largest) of a value over the ranks, on every rank.
 double sum_over_ranks(double v);
 double max_over_ranks(double v);
+/// The same for `count` values at once, in place.
+void sum_over_ranks(double* values, int count);
+void max_over_ranks(double* values, int count);
 /// Each rank's values, concatenated in rank order, on rank 0 (empty elsewhere).
 std::vector<double> gather_on_root(const std::vector<double>& mine);
 /// Every rank waits for the others.

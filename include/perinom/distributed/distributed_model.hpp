@@ -1,0 +1,47 @@
+#pragma once
+/// @file A model spread over MPI ranks (issue 19): this rank's owned particles as a Model the
+/// serial solvers run unchanged. Its dofs are the owned particles' (in curve order); a force
+/// evaluation copies them into the local part's array, fills the ghosts from their owners
+/// (Halo) and evaluates the local model, whose rows are limited to the owned ones
+/// (CorrespondenceModel::limit_rows). The solvers' sums go over the ranks.
+#include <memory>
+#include <vector>
+
+#include "perinom/distributed/ranks.hpp"
+#include "perinom/models/correspondence.hpp"
+#include "perinom/neighbors/local_part.hpp"
+
+namespace perinom {
+
+class DistributedModel : public Model {
+ public:
+  /// `local` is the model of `part`'s particles (owned first, then the ghosts), built on
+  /// subcloud(cloud, part.particles); its rows are limited here. Both must outlive this.
+  DistributedModel(CorrespondenceModel& local, const LocalPart& part);
+
+  std::size_t particles() const override { return part_.owned; }
+  int dofs_per_particle() const override { return local_.dofs_per_particle(); }
+  void internal_force(const double* u, double* f) override;
+  double energy(const double* u) override;  ///< this rank's share (the solvers sum it)
+  std::vector<double> lumped_mass() const override;
+  std::vector<double> stiffness_row_sums() const override;
+  std::vector<std::pair<std::string, std::size_t>> memory() const override;
+  /// The local model's fields at the owned particles.
+  std::vector<OutputField> output_fields(const double* u, bool probe_fields = false,
+                                         bool gradients = false) const override;
+  void sum_across_ranks(double* values, int count) const override { sum_over_ranks(values, count); }
+  void max_across_ranks(double* values, int count) const override { max_over_ranks(values, count); }
+
+  /// The local part's array (owned, then ghosts) at the owned values u, ghosts exchanged:
+  /// what the local model evaluates (for output and probes through it).
+  const std::vector<double>& local_state(const double* u) const;
+
+ private:
+  CorrespondenceModel& local_;
+  const LocalPart& part_;
+  mutable std::vector<double> u_local_;  // the halo's array: it must not move
+  std::vector<double> f_local_;
+  std::unique_ptr<Halo> halo_;
+};
+
+}  // namespace perinom

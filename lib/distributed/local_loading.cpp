@@ -1,0 +1,36 @@
+#include "perinom/distributed/local_loading.hpp"
+
+#include <stdexcept>
+#include <unordered_map>
+
+namespace perinom {
+
+Loading local_loading(const Loading& whole, const LocalPart& part, int d) {
+  if (whole.coupled_constraints())
+    throw std::invalid_argument("local_loading: face-located constraints are not distributed");
+  if (!whole.value0.empty() || !whole.force0.empty() || whole.has_pressure())
+    throw std::invalid_argument("local_loading: load stages and pressures are not distributed");
+  std::unordered_map<ParticleId, std::int64_t> owned;
+  owned.reserve(part.owned);
+  for (std::size_t p = 0; p < part.owned; ++p) owned.emplace(part.particles[p], std::int64_t(p));
+  Loading mine;
+  mine.support_names = whole.support_names;
+  mine.collocated = whole.collocated;
+  for (std::size_t k = 0; k < whole.fixed.size(); ++k) {
+    const auto at = owned.find(ParticleId(whole.fixed[k] / d));
+    if (at == owned.end()) continue;
+    mine.fixed.push_back(at->second * d + whole.fixed[k] % d);
+    mine.value.push_back(whole.value[k]);
+    if (!whole.rate.empty()) mine.rate.push_back(whole.rate[k]);
+    if (!whole.support.empty()) mine.support.push_back(whole.support[k]);
+  }
+  // A rank holding no constraint of a loading with rates keeps an empty rate list: no rates.
+  if (!whole.force.empty()) {
+    mine.force.resize(part.owned * d);
+    for (std::size_t p = 0; p < part.owned; ++p)
+      for (int a = 0; a < d; ++a) mine.force[p * d + a] = whole.force[std::size_t(part.particles[p]) * d + a];
+  }
+  return mine;
+}
+
+}  // namespace perinom
