@@ -180,6 +180,29 @@ void write_vtu(const std::string& path, int dim, std::size_t n, const double* x,
   publish(tmp, path);
 }
 
+namespace {
+
+/// An XML text to `path`, through path.tmp and a rename; `what` names it in errors.
+void write_xml(const fs::path& path, const std::string& text, const char* what) {
+  const fs::path tmp = fs::path(path.string() + ".tmp");
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out)
+      throw InputError(std::string("cannot write ") + what + " '" + path.string() + "': opening '" + tmp.string() +
+                       "' failed: " + std::strerror(errno));
+    out << text;
+    out.close();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(tmp, ignored);
+      throw InputError(std::string("cannot write ") + what + " '" + path.string() + "': write failed");
+    }
+  }
+  publish(tmp, path);
+}
+
+}  // namespace
+
 PvdSeries::PvdSeries(std::string directory, std::string name)
     : directory_(std::move(directory)), name_(std::move(name)) {}
 
@@ -188,9 +211,7 @@ std::string PvdSeries::add(double time, int dim, std::size_t n, const double* x,
   if (!std::isfinite(time))
     throw std::invalid_argument("PvdSeries '" + name_ + "': step " +
                                 std::to_string(steps_.size()) + " has a non-finite time");
-  char index[32];
-  std::snprintf(index, sizeof index, "_%06zu.vtu", steps_.size());
-  const std::string file = name_ + index;
+  const std::string file = file_name(".vtu");
   write_vtu((fs::path(directory_) / file).string(), dim, n, x, fields);
   steps_.push_back({time, file});
   return file;
@@ -207,22 +228,40 @@ void PvdSeries::write() const {
   xml << "  </Collection>\n"
       << "</VTKFile>\n";
 
-  const fs::path path = fs::path(directory_) / (name_ + ".pvd");
-  const fs::path tmp = fs::path(path.string() + ".tmp");
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw InputError("cannot write ParaView series '" + path.string() + "': opening '" +
-                       tmp.string() + "' failed: " + std::strerror(errno));
-    out << xml.str();
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(tmp, ignored);
-      throw InputError("cannot write ParaView series '" + path.string() + "': write failed");
-    }
-  }
-  publish(tmp, path);
+  write_xml(fs::path(directory_) / (name_ + ".pvd"), xml.str(), "ParaView series");
+}
+
+void PvdSeries::record(double time, std::string file) {
+  if (!std::isfinite(time))
+    throw std::invalid_argument("PvdSeries '" + name_ + "': step " + std::to_string(steps_.size()) +
+                                " has a non-finite time");
+  steps_.push_back({time, std::move(file)});
+}
+
+std::string PvdSeries::file_name(const char* extension) const {
+  char index[32];
+  std::snprintf(index, sizeof index, "_%06zu", steps_.size());
+  return name_ + index + extension;
+}
+
+void write_pvtu(const std::string& path, const std::vector<std::string>& pieces,
+                const std::vector<PointField>& fields) {
+  std::ostringstream xml;
+  xml << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+      << "  <PUnstructuredGrid GhostLevel=\"0\">\n"
+      << "    <PPointData>\n";
+  for (const PointField& f : fields)
+    xml << "      <PDataArray type=\"Float64\" Name=\"" << xml_attribute(f.name) << "\" NumberOfComponents=\""
+        << f.components << "\"/>\n";
+  xml << "    </PPointData>\n"
+      << "    <PPoints>\n"
+      << "      <PDataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"/>\n"
+      << "    </PPoints>\n";
+  for (const std::string& piece : pieces) xml << "    <Piece Source=\"" << xml_attribute(piece) << "\"/>\n";
+  xml << "  </PUnstructuredGrid>\n"
+      << "</VTKFile>\n";
+  write_xml(path, xml.str(), "ParaView piece list");
 }
 
 std::size_t PvdSeries::size() const { return steps_.size(); }

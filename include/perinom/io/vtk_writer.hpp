@@ -30,6 +30,13 @@ struct PointField {
 void write_vtu(const std::string& path, int dim, std::size_t n, const double* x,
                const std::vector<PointField>& fields);
 
+/// The .pvtu that makes `pieces` one dataset in ParaView: .vtu files written by write_vtu
+/// with these fields (names and components; the data is not read), named relative to the
+/// .pvtu's folder. Written via path + ".tmp" and a rename.
+/// @throws perinom::InputError naming the path if it cannot be written.
+void write_pvtu(const std::string& path, const std::vector<std::string>& pieces,
+                const std::vector<PointField>& fields);
+
 /// A ParaView time series: directory/name.pvd lists directory/name_000000.vtu,
 /// directory/name_000001.vtu, ... with their times. The directory must exist.
 class PvdSeries {
@@ -41,6 +48,11 @@ class PvdSeries {
   /// @returns the file name written, relative to the directory (as listed in the .pvd).
   std::string add(double time, int dim, std::size_t n, const double* x,
                   const std::vector<PointField>& fields);
+
+  /// Records a step written elsewhere (a distributed run's .pvtu over its pieces) at `time`.
+  void record(double time, std::string file);
+  /// The name the next step's file gets: name_<6-digit index> + extension (".vtu").
+  std::string file_name(const char* extension) const;
 
   /// (Re)writes directory/name.pvd (an XML Collection with relative file names),
   /// via name.pvd.tmp + rename. Safe to call after every add().
