@@ -153,11 +153,10 @@ Families scene_families(const Scene& s, const PointCloud& cloud) {
   }
 }
 
-Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
-  Problem p;
-  p.scene = s;
-  if (timer) timer->start("discretization");
-  const std::string horizon = horizon_key(s);
+namespace {
+
+/// The scene's body (a mesh, a point file or a lattice) into p's cloud and groups.
+Body scene_body(const Scene& s, Problem& p) {
   Body body;
   if (s.body_files.given()) {
     body = read_body(s);
@@ -172,11 +171,12 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   p.groups = body.groups;
   p.mesh_elements = body.elements;
   p.mean_size = body.mean_size;
-  const Families families = scene_families(s, p.cloud);
-  p.bonds = families.bonds();
-  if (p.scene.damage && p.scene.damage->G_c > 0.0) derive_critical_stretch(*p.scene.damage, s, families);
-  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
-  if (timer) timer->start("operators");
+  return body;
+}
+
+}  // namespace
+
+CorrespondenceOptions correspondence_options(const Scene& s) {
   CorrespondenceOptions opt;
   opt.influence = s.discretization.weight;
   opt.stabilization = s.model.stabilization;
@@ -189,6 +189,35 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   if (s.model.kinematics == "finite_rotation") opt.kinematics = Kinematics::finite_rotation;
   opt.follower_pressure = s.model.follower_pressure;
   opt.fracture_fields = s.damage.has_value() || !s.precracks.empty();
+  return opt;
+}
+
+Problem build_problem_frame(const Scene& s) {
+  if (s.model.type != "correspondence" || s.model.formulation != "classical")
+    throw std::logic_error("build_problem_frame: a correspondence scene of the classical formulation only");
+  Problem p;
+  p.scene = s;
+  const Body body = scene_body(s, p);
+  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
+  BoundaryData data{&body.facets, &p.groups, nullptr};
+  FaceOf face_of;
+  p.loading = make_loading(s, s.boundary, p.cloud, face_of, data);
+  if (!face_of.empty()) throw std::logic_error("build_problem_frame: face-located constraints need the model");
+  return p;
+}
+
+Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
+  Problem p;
+  p.scene = s;
+  if (timer) timer->start("discretization");
+  const std::string horizon = horizon_key(s);
+  const Body body = scene_body(s, p);
+  const Families families = scene_families(s, p.cloud);
+  p.bonds = families.bonds();
+  if (p.scene.damage && p.scene.damage->G_c > 0.0) derive_critical_stretch(*p.scene.damage, s, families);
+  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
+  if (timer) timer->start("operators");
+  const CorrespondenceOptions opt = correspondence_options(s);
   Surface surface;
   BoundaryFacets facets;
   if (s.body_files.given()) {

@@ -70,6 +70,16 @@ Families scene_families(const Scene& scene, const PointCloud& cloud);
 Problem build_correspondence_problem(const Scene& scene, PhaseTimer* timer);
 Problem build_plate_problem(const Scene& scene, PhaseTimer* timer);
 
+/// The model options a correspondence scene asks for (model, discretization.weight, plasticity,
+/// damage's fields).
+CorrespondenceOptions correspondence_options(const Scene& scene);
+
+/// What every rank of a distributed run shares (issue 19): the scene's particles, its loading
+/// and bound probes, without families or a model (p.model is null). A correspondence scene of
+/// the classical formulation whose constraints are on their particles (no `at: face`): throws
+/// std::logic_error for another, which the caller refuses first.
+Problem build_problem_frame(const Scene& scene);
+
 /// Builds the problem (lattice, families, operators, loading, probes) by the model registry's
 /// row of model.type (registry.cpp). Phases are timed
 /// in `timer` when given. Throws InputError for a region that selects no particle, a
