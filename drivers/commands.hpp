@@ -39,6 +39,8 @@ int bench(const Options& opt);
 int material_point(const Options& opt);
 /// perinom bench force on the ranks mpirun started (one without it), the cloud split by
 /// local_part; --check compares the force with the serial one (exit 1 when it differs).
+/// perinom run under mpirun -np R (R > 1): the distributed run (run_distributed.cpp).
+int run_distributed(const Options& opt);
 int bench_force_distributed(const Options& opt, const PointCloud& cloud);
 
 }  // namespace perinom::cli

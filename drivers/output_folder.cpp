@@ -38,7 +38,7 @@ bool is_run_output(const std::string& file_name) {
   std::string name = file_name;
   if (ends(name, ".tmp")) name.resize(name.size() - 4);
   if (name == "summary.json" || name == "history.csv" || name == "load_steps.csv" || name == "checkpoint.bin") return true;
-  if (ends(name, ".vtu") || ends(name, ".pvd")) return true;
+  if (ends(name, ".vtu") || ends(name, ".pvtu") || ends(name, ".pvd")) return true;
   if (!ends(name, ".csv")) return false;
   if (name.rfind("probe_", 0) == 0) return true;
   // A snapshot's CSV: NAME_ and at least six digits (the .vtu's index).

@@ -3,7 +3,7 @@
 // finished run, a run still going or killed, or nothing of perinom's.
 //   - At start the folder is created and checked writable, the marker run.incomplete is
 //     written, and the files an earlier run left (summary.json, history.csv, load_steps.csv,
-//     *.vtu, *.pvd, probe_*.csv, snapshot CSVs NAME_NNNNNN.csv, checkpoint.bin, and *.tmp
+//     *.vtu, *.pvtu, *.pvd, probe_*.csv, snapshot CSVs NAME_NNNNNN.csv, checkpoint.bin, and *.tmp
 //     of these) are removed, unless --keep; a run resumed in place (restart.hpp) spares
 //     the files of the run it continues.
 //   - summary.json is written last, with its "status".

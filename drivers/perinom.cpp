@@ -52,12 +52,12 @@ int main(int argc, char** argv) {
   opt.command = args[0];
   const PetscEnd petsc_end;
   try {
-    // Only the force benchmark is distributed so far (issue 19): any other command under
-    // mpirun would do the whole work on every rank and write the same files.
-    const bool distributed = args[0] == "bench" && args.size() > 1 && args[1] == "force";
+    // Only run and the force benchmark are distributed so far (issue 19): any other command
+    // under mpirun would do the whole work on every rank and write the same files.
+    const bool distributed = args[0] == "run" || (args[0] == "bench" && args.size() > 1 && args[1] == "force");
     if (mpirun_processes() > 1 && !distributed)
-      throw InputError("perinom " + args[0] + " runs on one MPI rank: of the distributed path only 'perinom bench "
-                       "force' is built yet, and mpirun -np " + std::to_string(mpirun_processes()) +
+      throw InputError("perinom " + args[0] + " runs on one MPI rank: of the distributed path only 'perinom run' "
+                       "and 'perinom bench force' are built yet, and mpirun -np " + std::to_string(mpirun_processes()) +
                        " would do the whole work on every rank (run it without mpirun; solver.linear_solver mumps "
                        "or gamg uses PETSc on one rank)");
     for (std::size_t k = 1; k < args.size(); ++k) {
@@ -123,7 +123,7 @@ int main(int argc, char** argv) {
     }
     if (opt.threads > 0) omp_set_num_threads(opt.threads);
     else if (omp_get_max_threads() > cli::max_threads) omp_set_num_threads(cli::max_threads);
-    if (opt.command == "run") return cli::run(opt);
+    if (opt.command == "run") return mpirun_processes() > 1 ? cli::run_distributed(opt) : cli::run(opt);
     if (opt.command == "check") return cli::check(opt);
     if (opt.command == "bench") return cli::bench(opt);
     if (opt.command == "material-point") return cli::material_point(opt);

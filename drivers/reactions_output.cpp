@@ -48,10 +48,9 @@ io::Json pin_results(const Problem& p) {
   return out;
 }
 
-void add_reaction_results(Problem& p, const Loading& loading, double s, const std::vector<double>& u,
+void add_reaction_results(Model& model, const Loading& loading, double s, const std::vector<double>& u,
                           bool dynamic, io::Json& summary) {
   if (!loading.has_supports()) return;
-  TangentModel& model = p.physics();
   const int dpp = model.dofs_per_particle();
   std::vector<double> fint(model.dofs()), R(loading.support_names.size() * dpp);
   model.follow_loads(loading, s);
@@ -61,6 +60,9 @@ void add_reaction_results(Problem& p, const Loading& loading, double s, const st
   double gross = 0.0;  // sum of |f_k|: the scale when the loads balance
   if (loading.has_force())
     for (std::size_t k = 0; k < model.dofs(); ++k) applied[k % dpp] += loading.force_at(s, k), gross += std::abs(loading.force_at(s, k));
+  model.sum_across_ranks(R.data(), int(R.size()));
+  model.sum_across_ranks(applied.data(), dpp);
+  model.sum_across_ranks(&gross, 1);
   io::Json reactions = io::Json::object();
   double largest = 0.0;
   for (std::size_t g = 0; g < loading.support_names.size(); ++g) {

@@ -19,7 +19,8 @@ io::Json pin_results(const Problem& p);
 /// summary["reactions"] (NAME: [R per component], N) and summary["equilibrium"] (applied,
 /// reactions: the sums; error; relative_to: which denominator).
 /// A dynamic run (Verlet) gets the reactions only: inertia balances its loads too.
-void add_reaction_results(Problem& p, const Loading& loading, double s, const std::vector<double>& u,
+/// A distributed model's sums go over the ranks (every rank calls it).
+void add_reaction_results(Model& model, const Loading& loading, double s, const std::vector<double>& u,
                           bool dynamic, io::Json& summary);
 
 }  // namespace perinom::cli

@@ -24,6 +24,7 @@
 #include "memory_estimate.hpp"
 #include "output_folder.hpp"
 #include "reactions_output.hpp"
+#include "run_output.hpp"
 #include "restart.hpp"
 #include "snapshot.hpp"
 #include "solve_scene.hpp"
@@ -36,13 +37,6 @@ namespace {
 namespace fs = std::filesystem;
 using io::Json;
 using io::write_json_file;
-
-void write_history(const std::string& path, const History& h) {
-  io::CsvWriter csv(path);
-  csv.header(h.columns);
-  for (std::size_t r = 0; r < h.rows(); ++r) csv.row(h.row(r));
-  csv.close();
-}
 
 /// Probe values into the summary; line probes also into probe_NAME.csv. Prints the point
 /// probes' values.
@@ -222,24 +216,7 @@ int run(const Options& opt) {
   if (dynamic) {
     solver["stable_time_step"] = rep.stable_time_step;
     solver["end_time"] = rep.end_time;
-    // The energy balance at the end (kinetic + strain + released - work, against the initial
-    // energy), over the largest work or energy recorded: the solver's guard stops a run only
-    // far beyond 1% (solver.energy_tolerance), so a run that ends beyond it says so.
-    const History& h = rep.history;
-    const std::size_t cols = h.columns.size();
-    if (h.rows() > 0 && cols > 5 && h.columns[5] == "total_energy") {
-      double scale = 0.0;
-      for (std::size_t r = 0; r < h.rows(); ++r)
-        scale = std::max({scale, std::abs(h.values[r * cols + 4]), h.values[r * cols + 2] + h.values[r * cols + 3]});
-      const double defect = std::abs(h.values[(h.rows() - 1) * cols + 5] - h.values[5]);
-      const double relative = scale > 0.0 ? defect / scale : 0.0;
-      solver["energy_balance"] = relative;
-      if (relative > 0.01)
-        std::printf("perinom: warning: the energy balance ends off by %.3g%% of the largest work or energy (kinetic + "
-                    "strain + released - external work; summary.json solver.energy_balance): the dynamics are not "
-                    "to be trusted (zero-energy modes without stabilization, or too large a time step)\n",
-                    100.0 * relative);
-    }
+    add_energy_balance(rep.history, solver);
   }
   if (scene.damage && rep.iterations > 0) {
     // The cost of breaking: a step that looks (find) and one that breaks, against an intact
@@ -288,7 +265,7 @@ int run(const Options& opt) {
   if (failure.empty()) {
     // The final state's load factor: 1, or Verlet's ramp where the run ended.
     const double s_end = dynamic && scene.solver.ramp_time > 0.0 ? std::min(1.0, rep.end_time / scene.solver.ramp_time) : 1.0;
-    add_reaction_results(p, scene.load_path() ? p.stages.back().loading : p.loading, s_end, u, dynamic, summary);
+    add_reaction_results(p.physics(), scene.load_path() ? p.stages.back().loading : p.loading, s_end, u, dynamic, summary);
   }
   if (scene.solver.check == "newton" && failure.empty()) {
     timer.start("newton check");

@@ -1,5 +1,5 @@
-// The program with PETSc: options passed through to the solver, and mpirun refused while
-// perinom is not distributed (each rank would solve the whole scene).
+// The program with PETSc: options passed through to the solver, and mpirun refused for the
+// commands that are not distributed (each rank would do the whole work).
 #include <cstdlib>
 
 #include "../support/cli.hpp"
@@ -30,9 +30,10 @@ TEST_CASE("PETSc options from the command line reach the Newton solve", "[cli][p
 TEST_CASE("more than one MPI rank is refused with a clear message", "[cli][petsc]") {
   ScratchDir dir;
   std::ofstream(dir.path / "scene.yaml") << tiny_scene;
-  // What mpirun -np 2 puts into each rank's environment (Open MPI; MPICH sets PMI_SIZE).
+  // What mpirun -np 2 puts into each rank's environment (Open MPI; MPICH sets PMI_SIZE); check
+  // is not distributed (run is: the mpi.run_* tests run it under mpirun).
   setenv("OMPI_COMM_WORLD_SIZE", "2", 1);
-  const Outcome o = perinom(dir, "run scene.yaml");
+  const Outcome o = perinom(dir, "check scene.yaml");
   unsetenv("OMPI_COMM_WORLD_SIZE");
   require_one_clear_error(o, {"one MPI rank", "mpirun -np 2"});
 }

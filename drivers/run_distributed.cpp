@@ -1,0 +1,201 @@
+// mpirun -np R perinom run SCENE (issue 19). The particles are split into R blocks along the
+// Morton curve; each rank builds the families and operators of its local part (owned, then
+// the ghosts within two horizons) and runs the serial ADR or Verlet on its owned dofs through
+// DistributedModel (one halo exchange of u per force, the solvers' sums over the ranks).
+// Rank 0 prints and writes the history, the probes and summary.json; every rank writes its
+// piece of each snapshot. Partial, and refused otherwise, naming the key: correspondence
+// scenes of the classical formulation on a lattice, radius families, constraints on their
+// particles, tractions, adr or verlet. Every rank builds the whole cloud and loading (O(N)
+// memory per rank) to choose its part.
+#include <omp.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <set>
+
+#include "commands.hpp"
+#include "distributed_output.hpp"
+#include "memory_estimate.hpp"
+#include "output_folder.hpp"
+#include "perinom/core/error.hpp"
+#include "perinom/core/timer.hpp"
+#include "perinom/distributed/local_loading.hpp"
+#include "perinom/neighbors/partition.hpp"
+#include "perinom/neighbors/search.hpp"
+#include "perinom/scene/registry.hpp"
+#include "perinom/solvers/adr.hpp"
+#include "perinom/solvers/verlet.hpp"
+#include "reactions_output.hpp"
+#include "run_output.hpp"
+#include "terminal_progress.hpp"
+
+namespace perinom::cli {
+namespace {
+
+/// Refuses, naming the key, what the distributed run does not do yet.
+void require_distributed(const Scene& s, const Options& opt) {
+  auto refuse = [&](const std::string& key, const std::string& what) {
+    throw InputError(s.source + ": " + key + ": " + what +
+                     " is not distributed yet (mpirun -np R perinom run distributes correspondence scenes of the "
+                     "classical formulation on a box, solved by adr or verlet, with constraints on their particles "
+                     "and tractions); run it without mpirun");
+  };
+  if (!opt.restart.empty()) refuse("--restart", "a restart");
+  if (s.model.type != "correspondence") refuse("model.type", s.model.type);
+  if (s.model.formulation != "classical")
+    refuse("model.formulation", "the " + s.model.formulation + " formulation (its rows read the whole body)");
+  if (s.body_files.given()) refuse(s.body_files.mesh.empty() ? "geometry.points" : "geometry.mesh", "a body from files");
+  if (s.discretization.horizon_neighbors > 0) refuse("discretization.horizon.neighbors", "k-nearest families");
+  if (s.plasticity) refuse("material.type", "drucker_prager");
+  if (s.model.kinematics != "small_strain") refuse("model.kinematics", s.model.kinematics);
+  if (s.solver.type != "adr" && s.solver.type != "verlet") refuse("solver.type", s.solver.type);
+  if (!s.stages.empty()) refuse("stages", "a load path");
+  if (s.constraints != "none") refuse("constraints", s.constraints);
+  if (s.damage) refuse("damage", "bond breaking");
+  if (!s.precracks.empty()) refuse("precracks", "a precrack");
+  if (s.solver.check != "none") refuse("solver.check", "the " + s.solver.check + " check");
+  if (s.output.checkpoint_every > 0) refuse("output.checkpoint_every", "a checkpoint");
+  if (s.output.csv) refuse("output.csv", "a snapshot as CSV");
+  for (const BoundarySpec& b : s.boundary) {
+    if (b.at_face) refuse(b.key + ".at", "a constraint at the face");
+    if (b.pressure) refuse(b.key + ".pressure", "a pressure");
+  }
+}
+
+}  // namespace
+
+int run_distributed(const Options& opt) {
+  if (opt.positional.size() != 1) throw InputError("run needs exactly one scene file");
+  const Ranks world = mpi_ranks();
+  const bool root = world.rank == 0;
+  // One report: rank 0's (errors still reach stderr from every rank).
+  if (!root && !std::freopen("/dev/null", "w", stdout)) throw InputError("cannot silence rank " + std::to_string(world.rank));
+  PhaseTimer timer;
+  timer.start("read scene");
+  const Scene scene = read_scene(opt.positional[0], opt.overrides);
+  require_distributed(scene, opt);
+  const std::string dir = !opt.out.empty() ? opt.out : "out/" + scene.name;
+  std::optional<RunFolder> folder;
+  if (root) {
+    folder.emplace(dir, opt.keep);
+    if (folder->removed() > 0)
+      std::printf("perinom: removed %d files of an earlier run from %s (--keep keeps them)\n", folder->removed(), dir.c_str());
+  }
+  barrier();
+  std::printf("perinom: %s: building particles, families and operators on %d ranks\n", scene.name.c_str(), world.size);
+  std::fflush(stdout);
+
+  // The whole cloud's frame, this rank's part, and the local problem over it.
+  timer.start("discretization");
+  const Problem frame = build_problem_frame(scene);
+  const int d = frame.cloud.dim;
+  const double horizon = scene.discretization.horizon_ratio * scene.discretization.dx;
+  const LocalPart part = local_part(frame.cloud, morton_order(frame.cloud), world.size, world.rank, horizon);
+  Problem local;
+  local.scene = scene;
+  local.cloud = subcloud(frame.cloud, part.particles);
+  local.probes = frame.probes;  // their specs (the readout asks whether one reconstructs)
+  const Families families = scene_families(scene, local.cloud);
+  timer.start("operators");
+  auto model = std::make_unique<CorrespondenceModel>(local.cloud, families, scene.material, correspondence_options(scene));
+  CorrespondenceModel& local_model = *model;
+  local.model = std::move(model);
+  DistributedModel distributed(local_model, part);
+  const Loading loading = local_loading(frame.loading, part, d);
+  std::size_t owned_bonds = 0;
+  for (std::size_t p = 0; p < part.owned; ++p) owned_bonds += std::size_t(families.end(p) - families.begin(p));
+  const double bonds = sum_over_ranks(double(owned_bonds));
+  const double ghosts = max_over_ranks(double(part.ghosts()) / double(std::max<std::size_t>(part.owned, 1)));
+  std::printf("perinom: %s: %zu particles, %.0f bonds, %d ranks x %d threads (ghosts up to %.0f%% of a rank's own), "
+              "solver %s\n", scene.name.c_str(), frame.cloud.size(), bonds, world.size, omp_get_max_threads(),
+              100.0 * ghosts, scene.solver.type.c_str());
+  std::fflush(stdout);
+
+  // The solve, on the owned dofs.
+  const RankRun run{frame, part, local, distributed, world.rank, world.size};
+  const bool dynamic = scene.solver.type == "verlet";
+  io::PvdSeries series(dir, scene.name);
+  std::int64_t last_snapshot = -1;
+  Observer observe{scene.output.vtk_every, [&](std::int64_t it, double t, const std::vector<double>& state) {
+                     add_piece_snapshot(series, dynamic ? t : double(it), run, state, dir);
+                     last_snapshot = it;
+                   }};
+  std::optional<TerminalProgress> progress;
+  if (root) progress.emplace(scene.solver.type.c_str());
+  Progress* shown = progress ? &*progress : nullptr;
+  std::vector<double> u(distributed.dofs(), 0.0), v;
+  timer.start("solve");
+  const SolveReport rep = dynamic ? solve_verlet(distributed, loading, verlet_options(scene.solver), u, v, shown, observe)
+                                  : solve_adr(distributed, loading, adr_options(scene.solver), u, shown, observe);
+
+  // The final state, the history and the summary (rank 0).
+  timer.start("output");
+  std::string final_state_error;
+  io::Json probes;
+  try {
+    if (last_snapshot != rep.iterations) add_piece_snapshot(series, dynamic ? rep.end_time : double(rep.iterations), run, u, dir);
+    probes = distributed_probe_results(run, u, dir);
+  } catch (const SolveError& e) {
+    final_state_error = e.what();
+    std::fprintf(stderr, "perinom: the final state is not written: %s\n", e.what());
+  }
+  if (root) write_history(dir + "/history.csv", rep.history);
+  const bool converged = rep.failure.empty() && rep.converged && final_state_error.empty();
+  io::Json summary = io::Json::object();
+  summary["status"] = rep.diverged || !final_state_error.empty() ? "diverged" : converged ? "converged" : "not_converged";
+  summary["scene"] = scene.source;
+  summary["name"] = scene.name;
+  summary["dimension"] = scene.dim;
+  summary["particles"] = frame.cloud.size();
+  summary["bonds"] = static_cast<long long>(bonds);
+  summary["threads"] = omp_get_max_threads();
+  summary["ranks"] = world.size;
+  io::Json solver = io::Json::object();
+  solver["type"] = scene.solver.type;
+  solver["iterations"] = static_cast<long long>(rep.iterations);
+  solver["converged"] = converged;
+  solver["residual"] = rep.residual;
+  solver["displacement_change"] = rep.displacement_change;
+  if (dynamic) {
+    solver["stable_time_step"] = rep.stable_time_step;
+    solver["end_time"] = rep.end_time;
+    add_energy_balance(rep.history, solver);
+  }
+  if (rep.diverged) {
+    solver["diverged_at"] = static_cast<long long>(rep.diverged_at);
+    solver["last_good"] = static_cast<long long>(rep.iterations);
+  }
+  if (!rep.failure.empty()) solver["error"] = rep.failure;
+  if (!final_state_error.empty()) solver["final_state_error"] = final_state_error;
+  summary["solver"] = solver;
+  if (rep.failure.empty()) {
+    const double s_end = dynamic && scene.solver.ramp_time > 0.0 ? std::min(1.0, rep.end_time / scene.solver.ramp_time) : 1.0;
+    add_reaction_results(distributed, loading, s_end, u, dynamic, summary);
+  }
+  summary["probes"] = probes;
+  timer.stop();
+  io::Json wall = io::Json::object();
+  for (const auto& ph : timer.phases()) wall[ph.first] = max_over_ranks(ph.second);
+  summary["wall_time"] = wall;
+  io::Json memory = io::Json::object();
+  memory["peak_bytes_per_rank"] = max_over_ranks(double(peak_resident_bytes()));
+  memory["peak_bytes_all_ranks"] = sum_over_ranks(double(peak_resident_bytes()));
+  summary["memory"] = memory;
+  if (root) io::write_json_file(dir + "/summary.json", summary);
+  barrier();
+
+  if (!final_state_error.empty() && rep.failure.empty()) throw SolveError(final_state_error);
+  if (!rep.failure.empty()) throw SolveError(rep.failure + "; results in " + dir);
+  if (dynamic)
+    std::printf("perinom: %lld steps to t = %.6e s (stable step %.3e s) on %d ranks; results in %s\n",
+                static_cast<long long>(rep.iterations), rep.end_time, rep.stable_time_step, world.size, dir.c_str());
+  else
+    std::printf("perinom: %s after %lld iterations (residual %.3e) on %d ranks; results in %s\n",
+                rep.converged ? "converged" : "NOT converged", static_cast<long long>(rep.iterations), rep.residual,
+                world.size, dir.c_str());
+  return rep.converged ? 0 : 1;
+}
+
+}  // namespace perinom::cli

@@ -1,0 +1,34 @@
+#include "run_output.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "perinom/io/csv_writer.hpp"
+
+namespace perinom::cli {
+
+void write_history(const std::string& path, const History& h) {
+  io::CsvWriter csv(path);
+  csv.header(h.columns);
+  for (std::size_t r = 0; r < h.rows(); ++r) csv.row(h.row(r));
+  csv.close();
+}
+
+void add_energy_balance(const History& h, io::Json& solver) {
+  const std::size_t cols = h.columns.size();
+  if (h.rows() == 0 || cols <= 5 || h.columns[5] != "total_energy") return;
+  double scale = 0.0;
+  for (std::size_t r = 0; r < h.rows(); ++r)
+    scale = std::max({scale, std::abs(h.values[r * cols + 4]), h.values[r * cols + 2] + h.values[r * cols + 3]});
+  const double defect = std::abs(h.values[(h.rows() - 1) * cols + 5] - h.values[5]);
+  const double relative = scale > 0.0 ? defect / scale : 0.0;
+  solver["energy_balance"] = relative;
+  if (relative > 0.01)
+    std::printf("perinom: warning: the energy balance ends off by %.3g%% of the largest work or energy (kinetic + "
+                "strain + released - external work; summary.json solver.energy_balance): the dynamics are not "
+                "to be trusted (zero-energy modes without stabilization, or too large a time step)\n",
+                100.0 * relative);
+}
+
+}  // namespace perinom::cli

@@ -1,0 +1,117 @@
+#!/usr/bin/env python3
+"""Runs a scene serially and on R MPI ranks and compares what the two runs report (issue 19).
+
+Checks: both exit 0 with status converged; the same particle and bond counts; every point
+probe, line probe row and support reaction within --tolerance of the serial value (relative
+to the largest magnitude of its kind); the history's columns alike (and, for a dynamic run,
+every row within the tolerance); the final snapshot's pieces, one per rank, holding every
+particle once between them. Prints "compare: passed" or what differs, and exits 1 then.
+Standard library only: the CI's python3 runs it.
+"""
+import argparse
+import csv
+import json
+import os
+import re
+import subprocess
+import sys
+
+
+def run(command):
+    done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if done.returncode != 0:
+        sys.stdout.write(done.stdout)
+        sys.exit("compare: %s exited with %d" % (" ".join(command), done.returncode))
+    return done.stdout
+
+
+def rows(path):
+    with open(path) as f:
+        table = list(csv.reader(f))
+    return table[0], [[float(x) for x in r] for r in table[1:]]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--perinom", required=True)
+    ap.add_argument("--mpiexec", required=True)
+    ap.add_argument("--ranks", type=int, required=True)
+    ap.add_argument("--scene", required=True)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--set", action="append", default=[])
+    ap.add_argument("--tolerance", type=float, required=True)
+    a = ap.parse_args()
+    sets = [x for s in a.set for x in ("--set", s)]
+    serial, ranked = os.path.join(a.out, "serial"), os.path.join(a.out, "ranks%d" % a.ranks)
+    run([a.perinom, "run", a.scene, "--out", serial, "--threads", "1"] + sets)
+    run([a.mpiexec, "-np", str(a.ranks), "--oversubscribe", a.perinom, "run", a.scene, "--out", ranked,
+         "--threads", "1"] + sets)
+    s = json.load(open(os.path.join(serial, "summary.json")))
+    m = json.load(open(os.path.join(ranked, "summary.json")))
+    failures = []
+    worst = [0.0]
+
+    def close(what, x, y, scale):
+        worst[0] = max(worst[0], abs(x - y) / scale)
+        if not abs(x - y) <= a.tolerance * scale:
+            failures.append("%s: %.12g serial, %.12g on %d ranks" % (what, x, y, a.ranks))
+
+    for key in ("status", "particles", "bonds"):
+        if s[key] != m[key]:
+            failures.append("%s: %s serial, %s on %d ranks" % (key, s[key], m[key], a.ranks))
+    if m.get("ranks") != a.ranks:
+        failures.append("ranks: the summary says %s" % m.get("ranks"))
+    for name, value in s["probes"].items():
+        if isinstance(value, dict):
+            head_s, rs = rows(os.path.join(serial, value["file"]))
+            head_m, rm = rows(os.path.join(ranked, value["file"]))
+            if head_s != head_m or len(rs) != len(rm):
+                failures.append("probe %s: the line differs in columns or length" % name)
+                continue
+            for c, column in enumerate(head_s):
+                scale = max(max(abs(r[c]) for r in rs), 1e-300)
+                for r in range(len(rs)):
+                    close("probe %s row %d %s" % (name, r, column), rs[r][c], rm[r][c], scale)
+        else:
+            close("probe " + name, value, m["probes"][name], max(abs(value), 1e-300))
+    reactions = s.get("reactions", {})
+    scale = max([abs(x) for r in reactions.values() for x in r] + [1e-300])
+    for name, r in reactions.items():
+        for c, x in enumerate(r):
+            close("reaction %s[%d]" % (name, c), x, m["reactions"][name][c], scale)
+    head_s, hs = rows(os.path.join(serial, "history.csv"))
+    head_m, hm = rows(os.path.join(ranked, "history.csv"))
+    if head_s != head_m:
+        failures.append("history: the columns differ")
+    elif s["solver"]["type"] == "verlet":
+        if len(hs) != len(hm):
+            failures.append("history: %d rows serial, %d on %d ranks" % (len(hs), len(hm), a.ranks))
+        # Reaction columns against the largest reaction (a held component's is rounding).
+        supports = [c for c, column in enumerate(head_s) if re.search(r"\.R[xyz]?$", column)]
+        largest = max([abs(r[c]) for r in hs for c in supports] + [1e-300])
+        for c, column in enumerate(head_s):
+            scale = largest if c in supports else max(max(abs(r[c]) for r in hs), 1e-300)
+            for r in range(min(len(hs), len(hm))):
+                close("history row %d %s" % (r, column), hs[r][c], hm[r][c], scale)
+    # The final snapshot: its .pvtu names one piece per rank, which hold every particle once.
+    pvd = open(os.path.join(ranked, m["name"] + ".pvd")).read()
+    last = re.findall(r'file="([^"]+)"', pvd)[-1]
+    pieces = re.findall(r'Source="([^"]+)"', open(os.path.join(ranked, last)).read())
+    points = 0
+    for piece in pieces:
+        with open(os.path.join(ranked, piece), "rb") as f:
+            head = f.read(4096).decode("latin-1")
+        points += int(re.search(r'NumberOfPoints="(\d+)"', head).group(1))
+    if len(pieces) != a.ranks or points != s["particles"]:
+        failures.append("snapshot %s: %d pieces with %d points, for %d ranks and %d particles"
+                        % (last, len(pieces), points, a.ranks, s["particles"]))
+    for f in failures[:20]:
+        print("compare: " + f)
+    print("compare: largest relative difference %.3e (tolerance %g); iterations %d serial, %d on %d ranks"
+          % (worst[0], a.tolerance, s["solver"]["iterations"], m["solver"]["iterations"], a.ranks))
+    print("compare: %s (%d ranks, %s)" % ("FAILED" if failures else "passed", a.ranks, s["solver"]["type"]))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
