@@ -114,7 +114,7 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
                             : storage == StabilizationStorage::matrix_free ? AssemblyLevel::matrix_free
                                                                          : AssemblyLevel::assembled);
   }
-  if (consistent) make_consistent(cloud, families, weights, facets, options.weight_precision);
+  if (consistent) make_consistent(cloud, families, weights, facets, options.weight_precision, options.ranks);
   H_.resize(particles() * dim_ * dim_);
   Q_.resize(particles() * dim_ * dim_);
   if (formulation_ != Formulation::classical && !consistent) P_.resize(particles() * dim_ * dim_);
@@ -123,7 +123,7 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
 
 void CorrespondenceModel::make_consistent(const PointCloud& cloud, const Families& families,
                                           const BondWeights& weights, BoundaryFacets& facets,
-                                          WeightPrecision precision) {
+                                          WeightPrecision precision, const CorrectionShare* ranks) {
   trace_ = BoundaryTrace(std::move(facets), cloud, G_);
   const std::vector<double> c = trace_.column_measure(particles());
   // The correction keeps G~ exact for linear fields (the patch test); it would keep an order-2 G
@@ -131,8 +131,10 @@ void CorrespondenceModel::make_consistent(const PointCloud& cloud, const Familie
   // (the fit's residuals scale with delta^3 instead of delta^2) and stalls near 1e-10 on modest
   // clouds, while the bending results barely move (measured on the 2-D cantilever).
   const NonlocalOperator G1 = order_ == 1 ? NonlocalOperator() : NonlocalOperator(cloud, G_.shared_graph(), weights);
+  ConsistencyOptions copt;
+  copt.ranks = ranks;
   std::vector<double> g =
-      consistent_gradient_weights(cloud, families, weights, order_ == 1 ? G_ : G1, G_, c, {}, &consistency_);
+      consistent_gradient_weights(cloud, families, weights, order_ == 1 ? G_ : G1, G_, c, copt, &consistency_);
   if (!consistency_.converged) {
     char msg[200];
     std::snprintf(msg, sizeof msg, "the consistent gradient's correction did not converge (relative "
@@ -145,8 +147,8 @@ void CorrespondenceModel::make_consistent(const PointCloud& cloud, const Familie
 void CorrespondenceModel::gradient(const double* u, double* H) const { G_.apply(u, dim_, H); }
 
 void CorrespondenceModel::limit_rows(std::size_t evaluated, std::size_t written) {
-  if (formulation_ != Formulation::classical)
-    throw std::logic_error("CorrespondenceModel::limit_rows: the classical formulation only");
+  if (formulation_ != Formulation::classical && formulation_ != Formulation::consistent)
+    throw std::logic_error("CorrespondenceModel::limit_rows: the classical and consistent formulations only");
   if (written > evaluated || evaluated > particles())
     throw std::logic_error("CorrespondenceModel::limit_rows: written > evaluated or evaluated > particles");
   G_.limit_rows(evaluated, written);
@@ -289,8 +291,8 @@ std::vector<double> CorrespondenceModel::stiffness_row_sums() const {
 }
 
 std::vector<double> CorrespondenceModel::stiffness_row_sums(const std::vector<ParticleId>& rows) const {
-  if (formulation_ != Formulation::classical)
-    throw std::logic_error("stiffness_row_sums(rows): for the classical formulation");
+  if (formulation_ != Formulation::classical && formulation_ != Formulation::consistent)
+    throw std::logic_error("stiffness_row_sums(rows): for the classical and consistent formulations");
   const int d = dim_;
   if (!std::is_sorted(rows.begin(), rows.end()) || std::adjacent_find(rows.begin(), rows.end()) != rows.end())
     throw std::invalid_argument("stiffness_row_sums(rows): the rows must be sorted and distinct");

@@ -77,6 +77,9 @@ struct CorrespondenceOptions {
   /// Output fields of a run with cracks from its start: damage and max_principal_stress
   /// (otherwise damage appears once a bond is broken).
   bool fracture_fields = false;
+  /// The consistent formulation on a distributed rank's local part: the rank's share of the
+  /// correction solve (consistent_gradient.hpp); nullptr: the whole body.
+  const CorrectionShare* ranks = nullptr;
 };
 
 /// What CorrespondenceModel::break_bonds did.
@@ -112,8 +115,9 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   std::vector<double> lumped_mass() const override;
   std::vector<double> stiffness_row_sums() const override;
   /// The same for the listed particles' rows only (sorted, distinct; d values each), as
-  /// they are after break_bonds: a fracture run's stable time step follows its breaks by them.
-  /// The classical formulation (the one that breaks bonds) only; throws std::logic_error else.
+  /// they are after break_bonds: a fracture run's stable time step follows its breaks by them,
+  /// a distributed rank's by its owned rows. The classical and consistent formulations (no
+  /// strong rows) only; throws std::logic_error else.
   std::vector<double> stiffness_row_sums(const std::vector<ParticleId>& rows) const;
   std::vector<std::pair<std::string, std::size_t>> memory() const override;
   void follow_loads(const Loading& loading, double s) override;
@@ -239,7 +243,7 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   std::vector<double> follower_tangent_;  // its local rows at the last prepare_tangent
   /// Replaces G by G~ (consistent_gradient.hpp) after keeping the trace of the facets.
   void make_consistent(const PointCloud& cloud, const Families& families, const BondWeights& weights,
-                       BoundaryFacets& facets, WeightPrecision precision);
+                       BoundaryFacets& facets, WeightPrecision precision, const CorrectionShare* ranks);
   /// Row i's share of the strain energy at u, with f += sign its derivative (H_ row i set
   /// from G first): the row update of break_bonds (correspondence_breaks.cpp).
   double row_share(std::size_t i, const double* u, double sign, double* f);

@@ -1,6 +1,7 @@
 #pragma once
 /// @file The variationally consistent gradient G~ (docs/theory.md, "consistent formulation";
 /// the integration constraint of Chen, Hillman and Rueter 2013 on the nonlocal gradient).
+#include <functional>
 #include <vector>
 
 #include "perinom/geometry/point_cloud.hpp"
@@ -19,12 +20,26 @@ struct ConsistencyReport {
   bool converged = false;
 };
 
+/// A distributed rank's share of the correction (issue 19). The cloud is the rank's local part
+/// (neighbors/local_part.hpp): its first `owned` particles are its own, the next `near` the
+/// ghosts within one horizon, the rest the far ghosts. `exchange` fills the ghosts' entries of
+/// a scalar field (one value per local particle) from their owners; `sum` adds `count` values
+/// over the ranks, in place, and `max` takes their largest. The solve then runs over the owned unknowns of every rank, and the
+/// owned and near rows get the corrected weights of the whole body (to the solve's tolerance);
+/// the far rows keep their uncorrected ones (a local part never reads them).
+struct CorrectionShare {
+  std::size_t owned = 0, near = 0;
+  std::function<void(double* field)> exchange;
+  std::function<void(double* values, int count)> sum, max;
+};
+
 struct ConsistencyOptions {
   double tolerance = 1e-13;  ///< the CG's target, on the relative residual of the column constraints
   /// The correction counts as converged below this relative residual (rounding can keep the
   /// target out of reach on large clouds; the patch test's error is of this order).
   double converged_tolerance = 1e-11;
   int max_iterations = 50000;
+  const CorrectionShare* ranks = nullptr;  ///< a distributed rank's share, or nullptr: the whole body
 };
 
 /// Corrects the gradient weights g of G (first- or second-order fit) to g~ = g + Delta such that
