@@ -4,8 +4,9 @@
 // DistributedModel (one halo exchange of u per force, the solvers' sums over the ranks).
 // Rank 0 prints and writes the history, the probes and summary.json; every rank writes its
 // piece of each snapshot. Partial, and refused otherwise, naming the key: correspondence
-// scenes of the classical formulation on a lattice, radius families, constraints on their
-// particles, tractions, adr or verlet. Every rank builds the whole cloud and loading (O(N)
+// scenes of the classical or consistent formulation on a lattice (the consistent correction
+// solved over the ranks), radius families, constraints on their particles, tractions, adr or
+// verlet. Every rank builds the whole cloud and loading (O(N)
 // memory per rank) to choose its part.
 #include <omp.h>
 
@@ -22,6 +23,7 @@
 #include "perinom/core/error.hpp"
 #include "perinom/core/timer.hpp"
 #include "perinom/distributed/local_loading.hpp"
+#include "perinom/distributed/correction_share.hpp"
 #include "perinom/neighbors/partition.hpp"
 #include "perinom/neighbors/search.hpp"
 #include "perinom/scene/registry.hpp"
@@ -34,18 +36,35 @@
 namespace perinom::cli {
 namespace {
 
+/// The facets whose particle is one of the first `rows` (a local part's owned and near ones).
+BoundaryFacets facets_of_rows(const BoundaryFacets& all, std::size_t rows) {
+  BoundaryFacets f;
+  f.dim = all.dim;
+  const int d = all.dim;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if (std::size_t(all.particle[k]) >= rows) continue;
+    f.particle.push_back(all.particle[k]);
+    f.area.push_back(all.area[k]);
+    f.side.push_back(all.side[k]);
+    f.normal.insert(f.normal.end(), all.normal.begin() + std::ptrdiff_t(k * d), all.normal.begin() + std::ptrdiff_t((k + 1) * d));
+    f.centroid.insert(f.centroid.end(), all.centroid.begin() + std::ptrdiff_t(k * d),
+                      all.centroid.begin() + std::ptrdiff_t((k + 1) * d));
+  }
+  return f;
+}
+
 /// Refuses, naming the key, what the distributed run does not do yet.
 void require_distributed(const Scene& s, const Options& opt) {
   auto refuse = [&](const std::string& key, const std::string& what) {
     throw InputError(s.source + ": " + key + ": " + what +
                      " is not distributed yet (mpirun -np R perinom run distributes correspondence scenes of the "
-                     "classical formulation on a box, solved by adr or verlet, with constraints on their particles "
+                     "classical or consistent formulation on a box, solved by adr or verlet, with constraints on their particles "
                      "and tractions); run it without mpirun");
   };
   if (!opt.restart.empty()) refuse("--restart", "a restart");
   if (s.model.type != "correspondence") refuse("model.type", s.model.type);
-  if (s.model.formulation != "classical")
-    refuse("model.formulation", "the " + s.model.formulation + " formulation (its rows read the whole body)");
+  if (s.model.formulation != "classical" && s.model.formulation != "consistent")
+    refuse("model.formulation", "the " + s.model.formulation + " formulation (its strong rows read the whole body)");
   if (s.body_files.given()) refuse(s.body_files.mesh.empty() ? "geometry.points" : "geometry.mesh", "a body from files");
   if (s.discretization.horizon_neighbors > 0) refuse("discretization.horizon.neighbors", "k-nearest families");
   if (s.plasticity) refuse("material.type", "drucker_prager");
@@ -99,11 +118,24 @@ int run_distributed(const Options& opt) {
   local.probes = frame.probes;  // their specs (the readout asks whether one reconstructs)
   const Families families = scene_families(scene, local.cloud);
   timer.start("operators");
-  auto model = std::make_unique<CorrespondenceModel>(local.cloud, families, scene.material, correspondence_options(scene));
+  // The consistent formulation: the facets of the owned and near particles (the rows that
+  // are evaluated), and the correction solved over the ranks.
+  const bool consistent = scene.model.formulation == "consistent";
+  const CorrectionShare share = correction_share(part);
+  CorrespondenceOptions copt = correspondence_options(scene);
+  copt.ranks = &share;
+  auto model = std::make_unique<CorrespondenceModel>(
+      local.cloud, families, scene.material, copt, Surface{},
+      consistent ? facets_of_rows(lattice_facets(scene.geometry, local.cloud), part.owned + part.near) : BoundaryFacets{});
   CorrespondenceModel& local_model = *model;
   local.model = std::move(model);
   DistributedModel distributed(local_model, part);
-  const Loading loading = local_loading(frame.loading, part, d);
+  Loading loading = local_loading(frame.loading, part, d);
+  if (consistent && !loading.force.empty()) {
+    // Its tractions act at the facets through the trace: each owned particle's share.
+    const std::vector<double> f = side_traction_forces(scene, local_model.trace(), local.cloud.size());
+    std::copy(f.begin(), f.begin() + std::ptrdiff_t(part.owned * d), loading.force.begin());
+  }
   std::size_t owned_bonds = 0;
   for (std::size_t p = 0; p < part.owned; ++p) owned_bonds += std::size_t(families.end(p) - families.begin(p));
   const double bonds = sum_over_ranks(double(owned_bonds));

@@ -176,6 +176,10 @@ Body scene_body(const Scene& s, Problem& p) {
 
 }  // namespace
 
+std::vector<double> side_traction_forces(const Scene& s, const BoundaryTrace& trace, std::size_t particles) {
+  return detail::side_traction_forces(s, trace, particles);
+}
+
 CorrespondenceOptions correspondence_options(const Scene& s) {
   CorrespondenceOptions opt;
   opt.influence = s.discretization.weight;
@@ -193,8 +197,8 @@ CorrespondenceOptions correspondence_options(const Scene& s) {
 }
 
 Problem build_problem_frame(const Scene& s) {
-  if (s.model.type != "correspondence" || s.model.formulation != "classical")
-    throw std::logic_error("build_problem_frame: a correspondence scene of the classical formulation only");
+  if (s.model.type != "correspondence" || (s.model.formulation != "classical" && s.model.formulation != "consistent"))
+    throw std::logic_error("build_problem_frame: a correspondence scene of the classical or consistent formulation only");
   Problem p;
   p.scene = s;
   const Body body = scene_body(s, p);

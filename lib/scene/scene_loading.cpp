@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <stdexcept>
 
 #include <array>
 
@@ -115,6 +116,18 @@ Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, 
     add_side_traction(b.region.side, ids, tp.data(), cloud, data.trace, load.pressure_force);
   }
   return load;
+}
+
+std::vector<double> side_traction_forces(const Scene& s, const BoundaryTrace& trace, std::size_t particles) {
+  std::vector<double> force(particles * s.dim, 0.0);
+  if (trace.empty()) return force;  // a local part with no facet: no traction reaches it
+  for (const auto& b : s.boundary) {
+    if (!b.traction) continue;
+    if (b.region.is_group())
+      throw std::logic_error("side_traction_forces: " + b.where + ": a group's traction (a body from files)");
+    add_side_traction(b.region.side, {}, b.traction->data(), PointCloud{}, &trace, force);
+  }
+  return force;
 }
 
 void couple_to_faces(Loading& load, const FaceOf& face_of, const BoxGeometry& box, const PointCloud& cloud,

@@ -37,6 +37,10 @@ struct BoundaryData {
 Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, const PointCloud& cloud,
                      FaceOf& face_of, const BoundaryData& data);
 
+/// The nodal forces (particles x d) of the tractions in `s.boundary`, all on box sides, through
+/// `trace` (the consistent formulation's work-consistent loads at the sides' facets).
+std::vector<double> side_traction_forces(const Scene& s, const BoundaryTrace& trace, std::size_t particles);
+
 /// Face-located constraints: u_i + (grad u)_i . r = u_bar with r from the particle to the point
 /// on its face, i.e. u_i (1 - sum_j c_j) + sum_j c_j u_j = u_bar with c_j = g_ij . r. With a trace
 /// (the consistent formulation) the point is the centroid of the particle's facet (on that side,
