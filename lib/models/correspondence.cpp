@@ -94,10 +94,11 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
   }
   if (order_ != 1 && order_ != 2)
     throw std::invalid_argument("CorrespondenceModel: operator_order must be 1 or 2");
-  const BondWeights weights = bond_weights(cloud, families, options.influence);
+  const BondWeights weights = bond_weights(cloud, families, options.influence, options.fitted_rows);
   graph_ = std::make_shared<BondGraph>(families);
   G_ = NonlocalOperator(cloud, graph_, weights,
-                        OperatorOptions{order_, false, consistent ? WeightPrecision::float64 : options.weight_precision});
+                        OperatorOptions{order_, false, consistent ? WeightPrecision::float64 : options.weight_precision,
+                                        options.fitted_rows});
   const double modulus = modulus_ = options.stabilization * 2.0 * material.mu();  // c_i = modulus / tr K_i
   if (options.stabilization > 0.0 && order_ == 1 && consistent) {
     // S from the uncorrected G (zero on linear fields all the same), stored before G changes
@@ -130,7 +131,10 @@ void CorrespondenceModel::make_consistent(const PointCloud& cloud, const Familie
   // exact for quadratics too if it used that fit, but the system is then far worse conditioned
   // (the fit's residuals scale with delta^3 instead of delta^2) and stalls near 1e-10 on modest
   // clouds, while the bending results barely move (measured on the 2-D cantilever).
-  const NonlocalOperator G1 = order_ == 1 ? NonlocalOperator() : NonlocalOperator(cloud, G_.shared_graph(), weights);
+  const NonlocalOperator G1 = order_ == 1 ? NonlocalOperator()
+                                           : NonlocalOperator(cloud, G_.shared_graph(), weights,
+                                                              OperatorOptions{1, false, WeightPrecision::float64,
+                                                                              G_.fitted_rows()});
   ConsistencyOptions copt;
   copt.ranks = ranks;
   std::vector<double> g =

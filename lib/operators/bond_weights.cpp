@@ -42,7 +42,8 @@ double shape_quality(int d, const double* K) {
   return det / std::pow(tr / d, d);
 }
 
-BondWeights bond_weights(const PointCloud& cloud, const Families& families, Influence kind) {
+BondWeights bond_weights(const PointCloud& cloud, const Families& families, Influence kind,
+                         std::size_t checked_rows) {
   const int d = cloud.dim;
   const std::size_t n = cloud.size();
   BondWeights b;
@@ -60,7 +61,8 @@ BondWeights bond_weights(const PointCloud& cloud, const Families& families, Infl
       b.wv[k] = influence(kind, xi.norm(), families.support[i]) * cloud.volume[j];
     }
     if (!shape_tensor(d, cloud.x.data(), i, families.begin(i), families.end(i), families.neighbors.data(),
-                      b.wv.data(), nullptr, b.shape.data() + i * d * d, b.shape_inverse.data() + i * d * d)) {
+                      b.wv.data(), nullptr, b.shape.data() + i * d * d, b.shape_inverse.data() + i * d * d) &&
+        i < checked_rows) {
 #pragma omp critical
       if (singular < 0 || static_cast<long>(i) < singular) singular = static_cast<long>(i);
     }

@@ -57,6 +57,7 @@ NonlocalOperator::NonlocalOperator(const PointCloud& cloud, std::shared_ptr<cons
                                    const BondWeights& weights, OperatorOptions options)
     : graph_(std::move(graph)), dim_(cloud.dim), order_(options.order), precision_(options.precision),
       x_(cloud.x), wv_(weights.wv) {
+  fitted_rows_ = options.fitted_rows;
   if (order_ != 1 && order_ != 2)
     throw std::invalid_argument("NonlocalOperator: order must be 1 or 2, not " + std::to_string(order_));
   if (graph_->rows() != cloud.size() || wv_.size() != graph_->bonds())
@@ -67,11 +68,13 @@ NonlocalOperator::NonlocalOperator(const PointCloud& cloud, std::shared_ptr<cons
   grad_.m = dim_;
   hess_.m = order_ == 2 && options.hessian ? hessian_terms() : 0;
   allocate();
-  const std::size_t n = rows();
+  const std::size_t n = rows(), fitted = fitted_rows();
   long singular = -1;
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::size_t i = 0; i < n; ++i)
-    if (!fit_row(i)) {
+    if (i >= fitted) {
+      form_shape_tensor(i);
+    } else if (!fit_row(i)) {
 #pragma omp critical
       if (singular < 0 || static_cast<long>(i) < singular) singular = static_cast<long>(i);
     }
@@ -121,12 +124,17 @@ void NonlocalOperator::allocate() {
   if (!x_.empty() && order_ == 1) kmin0_.assign(n, 0.0);
 }
 
+bool NonlocalOperator::form_shape_tensor(std::size_t i, double* Kinv) {
+  double unused[9];
+  return shape_tensor(dim_, x_.data(), i, graph_->begin(i), graph_->end(i), graph_->cols().data(), wv_.data(),
+                      graph_->alive_mask().data(), K_.data() + i * dim_ * dim_, Kinv ? Kinv : unused);
+}
+
 bool NonlocalOperator::fit_row(std::size_t i) {
   const int d = dim_;
   double Kinv[9];
   double* K = K_.data() + i * d * d;
-  const bool spans = shape_tensor(d, x_.data(), i, graph_->begin(i), graph_->end(i), graph_->cols().data(),
-                                  wv_.data(), graph_->alive_mask().data(), K, Kinv);
+  const bool spans = form_shape_tensor(i, Kinv);
   if (order_ == 2) return fit_second_order(i);
   if (!spans || shape_quality(d, K) < detach_quality) return false;
   const double kmin = smallest_eigenvalue(d, K);

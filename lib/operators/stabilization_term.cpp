@@ -115,7 +115,7 @@ class SecondOrderMatrixFreeTerm final : public StabilizationTerm {
  public:
   SecondOrderMatrixFreeTerm(const PointCloud& cloud, const NonlocalOperator& G, const BondWeights& weights,
                             double modulus)
-      : StabilizationTerm(G), fit_(cloud, G.shared_graph(), weights, OperatorOptions{2, true}),
+      : StabilizationTerm(G), fit_(cloud, G.shared_graph(), weights, OperatorOptions{2, true, WeightPrecision::float64, G.fitted_rows()}),
         S_(cloud, fit_, shape_scale(G, modulus, cloud.volume)), grad_(cloud.size() * cloud.dim * cloud.dim),
         hess_(cloud.size() * cloud.dim * fit_.hessian_terms()) {}
   AssemblyLevel level() const override { return AssemblyLevel::matrix_free; }
@@ -203,7 +203,7 @@ std::unique_ptr<StabilizationTerm> make_stabilization(const PointCloud& cloud, c
       return std::make_unique<SecondOrderMatrixFreeTerm>(cloud, G, weights, modulus);
     case AssemblyLevel::assembled: {
       // The Hessian weights only enter z_ij (seed 002 eq. 35): S is stored, the fit dropped.
-      const NonlocalOperator fit(cloud, G.shared_graph(), weights, OperatorOptions{2, true});
+      const NonlocalOperator fit(cloud, G.shared_graph(), weights, OperatorOptions{2, true, WeightPrecision::float64, G.fitted_rows()});
       const Stabilization S(cloud, fit, shape_scale(G, modulus, cloud.volume));
       return stored_stabilization(G, assemble_stabilization(S, cloud.size()), "second-order stabilization S");
     }

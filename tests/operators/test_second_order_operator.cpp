@@ -325,3 +325,35 @@ TEST_CASE("the second-order operators give the same bits on 1 and 2 threads",
   CHECK(std::memcmp(H[0].data(), H[1].data(), H[0].size() * sizeof(double)) == 0);
   CHECK(std::memcmp(T[0].data(), T[1].data(), T[0].size() * sizeof(double)) == 0);
 }
+
+TEST_CASE("rows past fitted_rows are not fitted: zero, the others as in the full fit, no error there",
+          "[operators][second_order]") {
+  // A distributed rank's far ghosts have truncated families; they only lend values. Two
+  // particles far from the lattice, one bond each, make a family no fit can use.
+  for (int order : {1, 2}) {
+    PointCloud c = test::lattice(2, 10, 0.3);
+    for (double y : {50.0, 51.0}) {
+      c.x.insert(c.x.end(), {50.0, y});
+      c.volume.push_back(1.0);
+    }
+    const Families f = radius_families(c, 3.015);
+    const std::size_t fitted = 100;  // the lattice's rows
+    CHECK_THROWS_AS(bond_weights(c, f, Influence::inverse_square), InputError);
+    const BondWeights bw = bond_weights(c, f, Influence::inverse_square, fitted);
+    CHECK_THROWS_AS(NonlocalOperator(c, f, bw, OperatorOptions{order, false}), InputError);
+    const NonlocalOperator part(c, f, bw, OperatorOptions{order, false, WeightPrecision::float64, fitted});
+    CHECK(part.fitted_rows() == fitted);
+    // The lattice alone, fitted in full: its rows must be the part's.
+    PointCloud lattice = c;
+    lattice.x.resize(fitted * 2), lattice.volume.resize(fitted);
+    const Families fl = radius_families(lattice, 3.015);
+    const NonlocalOperator full(lattice, fl, bond_weights(lattice, fl, Influence::inverse_square),
+                                OperatorOptions{order, false});
+    std::vector<double> u(c.size()), g(c.size() * 2), gl(fitted * 2);
+    for (std::size_t i = 0; i < c.size(); ++i) u[i] = std::sin(0.3 * double(i)) + c.x[i * 2] * c.x[i * 2 + 1];
+    part.apply(u.data(), 1, g.data());
+    full.apply(u.data(), 1, gl.data());
+    for (std::size_t k = 0; k < fitted * 2; ++k) CHECK(g[k] == Approx(gl[k]).epsilon(1e-13).margin(1e-13));
+    for (std::size_t k = fitted * 2; k < g.size(); ++k) CHECK(g[k] == 0.0);
+  }
+}

@@ -80,6 +80,9 @@ struct CorrespondenceOptions {
   /// The consistent formulation on a distributed rank's local part: the rank's share of the
   /// correction solve (consistent_gradient.hpp); nullptr: the whole body.
   const CorrectionShare* ranks = nullptr;
+  /// A distributed rank's local part: the rows fitted (its owned and near ones,
+  /// OperatorOptions::fitted_rows); the far ghosts' truncated families are not fitted.
+  std::size_t fitted_rows = SIZE_MAX;
 };
 
 /// What CorrespondenceModel::break_bonds did.

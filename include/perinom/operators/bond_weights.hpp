@@ -1,5 +1,7 @@
 #pragma once
 /// @file Per-bond scalar weights w_ij V_j and the shape tensors K_i (THEORY sec. 2).
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "perinom/geometry/point_cloud.hpp"
@@ -19,6 +21,9 @@ struct BondWeights {
 
 /// Computes the weights and shape tensors; throws InputError naming the first particle whose
 /// shape tensor is singular (its family does not span R^d), with its position and family size.
-BondWeights bond_weights(const PointCloud& cloud, const Families& families, Influence kind);
+/// Particles from `checked_rows` on are not checked (a distributed rank's far ghosts, whose
+/// truncated families no row reads: OperatorOptions::fitted_rows).
+BondWeights bond_weights(const PointCloud& cloud, const Families& families, Influence kind,
+                         std::size_t checked_rows = SIZE_MAX);
 
 }  // namespace perinom

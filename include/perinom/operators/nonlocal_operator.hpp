@@ -34,6 +34,10 @@ struct OperatorOptions {
   int order = 1;
   bool hessian = false;
   WeightPrecision precision = WeightPrecision::float64;  ///< order 1 only
+  /// Rows from this one on are not fitted: their weights stay zero (their shape tensors are
+  /// still formed). A distributed rank's far ghosts (neighbors/local_part.hpp), whose families
+  /// the local part truncates and whose rows nothing reads, only lend their values.
+  std::size_t fitted_rows = SIZE_MAX;
 };
 
 /// Where a field's values sit: component c of particle i at f[i * stride + c], c <
@@ -90,6 +94,8 @@ class NonlocalOperator {
 
   int dim() const { return dim_; }
   int order() const { return order_; }
+  /// The rows the constructor fitted (OperatorOptions::fitted_rows; all by default).
+  std::size_t fitted_rows() const { return std::min(fitted_rows_, rows()); }
   /// m = d(d+1)/2: the Hessian components per particle and field component.
   int hessian_terms() const { return dim_ * (dim_ + 1) / 2; }
   bool has_hessian() const { return hess_.m > 0; }
@@ -217,6 +223,9 @@ class NonlocalOperator {
   /// Row i from the live bonds (weights in both orientations, diagonal); false when the live
   /// family does not determine the fit (the row is then left for detach_row).
   bool fit_row(std::size_t i);
+  /// Row i's shape tensor K into K_ (and its inverse into Kinv when given); false when the
+  /// family does not span the space.
+  bool form_shape_tensor(std::size_t i, double* Kinv = nullptr);
   bool fit_first_order(std::size_t i, const double* Kinv);  // nonlocal_products.cpp
   bool fit_second_order(std::size_t i);
   void finish_row(std::size_t i);
@@ -224,6 +233,7 @@ class NonlocalOperator {
 
   std::shared_ptr<const BondGraph> graph_;
   std::size_t gradient_rows_ = SIZE_MAX, transpose_rows_ = SIZE_MAX;  // limit_rows
+  std::size_t fitted_rows_ = SIZE_MAX;                                  // OperatorOptions::fitted_rows
   int dim_ = 0, order_ = 1;
   WeightPrecision precision_ = WeightPrecision::float64;
   std::vector<double> x_, wv_;  // positions and w_ij V_j (row order): the inputs of a refresh
