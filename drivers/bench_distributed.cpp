@@ -58,7 +58,9 @@ int bench_force_distributed(const Options& opt, const PointCloud& cloud) {
   const LocalPart part = local_part(cloud, order, world.size, world.rank, bench_horizon);
   const PointCloud local = subcloud(cloud, part.particles);
   const Families fam = radius_families(local, bench_horizon);
-  CorrespondenceModel model(local, fam, bench_material(d), bench_options(opt));
+  CorrespondenceOptions copt = bench_options(opt);
+  copt.fitted_rows = part.owned + part.near;  // the far ghosts' truncated families only lend values
+  CorrespondenceModel model(local, fam, bench_material(d), copt);
   model.limit_rows(part.owned + part.near, part.owned);
   const double setup = max_over_ranks(wall_seconds() - t0);
   std::size_t owned_bonds = 0;

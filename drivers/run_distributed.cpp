@@ -124,6 +124,7 @@ int run_distributed(const Options& opt) {
   const CorrectionShare share = correction_share(part);
   CorrespondenceOptions copt = correspondence_options(scene);
   copt.ranks = &share;
+  copt.fitted_rows = part.owned + part.near;  // the far ghosts' truncated families only lend values
   auto model = std::make_unique<CorrespondenceModel>(
       local.cloud, families, scene.material, copt, Surface{},
       consistent ? facets_of_rows(lattice_facets(scene.geometry, local.cloud), part.owned + part.near) : BoundaryFacets{});
