@@ -86,11 +86,14 @@ def main():
     elif s["solver"]["type"] == "verlet":
         if len(hs) != len(hm):
             failures.append("history: %d rows serial, %d on %d ranks" % (len(hs), len(hm), a.ranks))
-        # Reaction columns against the largest reaction (a held component's is rounding).
+        # Reaction columns against the largest reaction (a held component's is rounding), the
+        # energies against the largest energy or work (total_energy is their cancelling sum).
         supports = [c for c, column in enumerate(head_s) if re.search(r"\.R[xyz]?$", column)]
+        energies = [c for c, column in enumerate(head_s) if column.endswith(("_energy", "_work"))]
         largest = max([abs(r[c]) for r in hs for c in supports] + [1e-300])
+        energy = max([abs(r[c]) for r in hs for c in energies] + [1e-300])
         for c, column in enumerate(head_s):
-            scale = largest if c in supports else max(max(abs(r[c]) for r in hs), 1e-300)
+            scale = largest if c in supports else energy if c in energies else max(max(abs(r[c]) for r in hs), 1e-300)
             for r in range(min(len(hs), len(hm))):
                 close("history row %d %s" % (r, column), hs[r][c], hm[r][c], scale)
     # The final snapshot: its .pvtu names one piece per rank, which hold every particle once.
