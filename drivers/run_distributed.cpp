@@ -29,6 +29,7 @@
 #include "perinom/scene/registry.hpp"
 #include "perinom/solvers/adr.hpp"
 #include "perinom/solvers/verlet.hpp"
+#include "rank_memory.hpp"
 #include "reactions_output.hpp"
 #include "run_output.hpp"
 #include "terminal_progress.hpp"
@@ -117,6 +118,7 @@ int run_distributed(const Options& opt) {
   local.cloud = subcloud(frame.cloud, part.particles);
   local.probes = frame.probes;  // their specs (the readout asks whether one reconstructs)
   const Families families = scene_families(scene, local.cloud);
+  const RankMemory estimate = require_rank_memory(scene, double(families.bonds()), double(families.particles()), opt.max_memory);
   timer.start("operators");
   // The consistent formulation: the facets of the owned and near particles (the rows that
   // are evaluated), and the correction solved over the ranks.
@@ -213,6 +215,7 @@ int run_distributed(const Options& opt) {
   for (const auto& ph : timer.phases()) wall[ph.first] = max_over_ranks(ph.second);
   summary["wall_time"] = wall;
   io::Json memory = io::Json::object();
+  memory["estimated_bytes_per_rank"] = estimate.most_bytes;
   memory["peak_bytes_per_rank"] = max_over_ranks(double(peak_resident_bytes()));
   memory["peak_bytes_all_ranks"] = sum_over_ranks(double(peak_resident_bytes()));
   summary["memory"] = memory;
