@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <unordered_map>
 
 #include "perinom/core/error.hpp"
 #include "perinom/io/csv_writer.hpp"
@@ -15,14 +14,6 @@ namespace {
 void require_finite_everywhere(bool finite, const std::string& what) {
   const double bad = max_over_ranks(finite ? 0.0 : 1.0);
   if (bad > 0.0) throw SolveError(finite ? "a value is NaN or Inf on another rank" : what);
-}
-
-/// The local index of each owned particle, by its index in the whole cloud.
-std::unordered_map<ParticleId, std::size_t> owned_index(const LocalPart& part) {
-  std::unordered_map<ParticleId, std::size_t> at;
-  at.reserve(part.owned);
-  for (std::size_t p = 0; p < part.owned; ++p) at.emplace(part.particles[p], p);
-  return at;
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
 #include "perinom/distributed/local_loading.hpp"
 
 #include <stdexcept>
-#include <unordered_map>
 
 namespace perinom {
 
@@ -10,16 +9,14 @@ Loading local_loading(const Loading& whole, const LocalPart& part, int d) {
     throw std::invalid_argument("local_loading: face-located constraints are not distributed");
   if (!whole.value0.empty() || !whole.force0.empty() || whole.has_pressure())
     throw std::invalid_argument("local_loading: load stages and pressures are not distributed");
-  std::unordered_map<ParticleId, std::int64_t> owned;
-  owned.reserve(part.owned);
-  for (std::size_t p = 0; p < part.owned; ++p) owned.emplace(part.particles[p], std::int64_t(p));
+  const auto owned = owned_index(part);
   Loading mine;
   mine.support_names = whole.support_names;
   mine.collocated = whole.collocated;
   for (std::size_t k = 0; k < whole.fixed.size(); ++k) {
     const auto at = owned.find(ParticleId(whole.fixed[k] / d));
     if (at == owned.end()) continue;
-    mine.fixed.push_back(at->second * d + whole.fixed[k] % d);
+    mine.fixed.push_back(std::int64_t(at->second) * d + whole.fixed[k] % d);
     mine.value.push_back(whole.value[k]);
     if (!whole.rate.empty()) mine.rate.push_back(whole.rate[k]);
     if (!whole.support.empty()) mine.support.push_back(whole.support[k]);

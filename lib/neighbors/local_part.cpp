@@ -73,6 +73,13 @@ LocalPart local_part(const PointCloud& cloud, const std::vector<ParticleId>& ord
   return part;
 }
 
+std::unordered_map<ParticleId, std::size_t> owned_index(const LocalPart& part) {
+  std::unordered_map<ParticleId, std::size_t> at;
+  at.reserve(part.owned);
+  for (std::size_t p = 0; p < part.owned; ++p) at.emplace(part.particles[p], p);
+  return at;
+}
+
 PointCloud subcloud(const PointCloud& cloud, const std::vector<ParticleId>& particles) {
   PointCloud out;
   out.dim = cloud.dim;

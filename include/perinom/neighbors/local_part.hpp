@@ -12,6 +12,7 @@
 /// still holds the whole cloud's positions to choose its part (24 bytes a particle in 3-D).
 #include <cstddef>
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "perinom/core/types.hpp"
@@ -38,6 +39,9 @@ struct LocalPart {
 /// own (distances compared with a relative margin of 1e-9: a ghost too many, never one too few).
 LocalPart local_part(const PointCloud& cloud, const std::vector<ParticleId>& order, int ranks, int rank,
                      double horizon);
+
+/// The local index of each owned particle, by its index in the whole cloud.
+std::unordered_map<ParticleId, std::size_t> owned_index(const LocalPart& part);
 
 /// The listed particles of `cloud` as a cloud of their own, in that order.
 PointCloud subcloud(const PointCloud& cloud, const std::vector<ParticleId>& particles);
