@@ -175,6 +175,8 @@ void BondBreaking::largest_ratio() {
 std::size_t BondBreaking::apply() {
   if (due_.empty()) return 0;
   const BondBreaks b = model_->break_bonds(due_);
+  died_.insert(died_.end(), due_.begin(), due_.end());
+  groups_.push_back(due_.size());
   due_.clear();
   return account(b);
 }
@@ -182,9 +184,58 @@ std::size_t BondBreaking::apply() {
 BondBreaks BondBreaking::apply(const double* u, double* f) {
   if (due_.empty()) return {};
   BondBreaks b = model_->break_bonds(due_, u, f);
+  died_.insert(died_.end(), due_.begin(), due_.end());
+  groups_.push_back(due_.size());
   due_.clear();
   b.broken = account(b);
   return b;
+}
+
+// state(): broken, finds, armed find, armed (0/1), s_hg_max, the number of groups, then each
+// group as its size and its bonds' ends in pairs.
+std::vector<double> BondBreaking::state() const {
+  std::vector<double> s{double(broken_), double(finds_), double(armed_find_),
+                        instability_ && instability_->armed() ? 1.0 : 0.0, hourglass_threshold(), double(groups_.size())};
+  s.reserve(s.size() + groups_.size() + 2 * died_.size());
+  std::size_t at = 0;
+  for (const std::size_t n : groups_) {
+    s.push_back(double(n));
+    for (std::size_t k = at; k < at + n; ++k) s.push_back(double(died_[k].first)), s.push_back(double(died_[k].second));
+    at += n;
+  }
+  return s;
+}
+
+void BondBreaking::restore(const std::vector<double>& s) {
+  const auto bad = [](const std::string& what) { return std::invalid_argument("BondBreaking::restore: " + what); };
+  if (broken_ != 0 || !died_.empty()) throw bad("bonds were broken already");
+  if (s.size() < 6) throw bad("the state is too short");
+  if (s[3] != 0.0 && !instability_) throw bad("the state is the instability criterion's, this run's is not");
+  const double n = double(cloud_->size());
+  const auto whole = [](double x, double below) { return x >= 0.0 && x < below && x == std::floor(x); };
+  if (!whole(s[5], double(s.size()))) throw bad("the state's group count does not fit it");
+  // Every group checked before any is broken: a state that does not fit changes nothing.
+  std::size_t at = 6;
+  for (std::size_t g = 0; g < std::size_t(s[5]); ++g) {
+    if (at >= s.size() || !whole(s[at], double(s.size())) || at + 1 + 2 * std::size_t(s[at]) > s.size())
+      throw bad("a group runs past the end of the state");
+    for (std::size_t k = at + 1; k < at + 1 + 2 * std::size_t(s[at]); ++k)
+      if (!whole(s[k], n)) throw bad("the state names a particle beyond the cloud");
+    at += 1 + 2 * std::size_t(s[at]);
+  }
+  if (at != s.size()) throw bad("the state has values after its last group");
+  at = 6;
+  for (std::size_t g = 0; g < std::size_t(s[5]); ++g) {
+    due_.clear();
+    for (std::size_t k = at + 1; k < at + 1 + 2 * std::size_t(s[at]); k += 2)
+      due_.emplace_back(ParticleId(s[k]), ParticleId(s[k + 1]));
+    at += 1 + 2 * std::size_t(s[at]);
+    apply();
+  }
+  if (broken_ != std::size_t(s[0])) throw bad("the recorded bonds do not match its count");
+  finds_ = std::int64_t(s[1]), armed_find_ = std::int64_t(s[2]);
+  if (s[3] != 0.0) instability_->rearm(s[4]);
+  screen(screen_ != nullptr);  // a fresh snapshot: the same bonds, found anew
 }
 
 std::size_t BondBreaking::account(const BondBreaks& b) {

@@ -31,6 +31,11 @@ void put_state(Checkpoint& c, const VerletState& s) {
   c.put_real("verlet.e0", s.e0), c.put_real("verlet.e_max", s.e_max), c.put_real("verlet.w_max", s.w_max);
   c.put("verlet.u", s.u), c.put("verlet.v", s.v), c.put("verlet.a", s.a), c.put("verlet.fint", s.fint);
   c.put("verlet.multipliers", s.multipliers), c.put("verlet.history", s.history);
+  if (s.changes.empty()) return;  // a model that does not change
+  c.put_real("verlet.stable_time_step", s.stable_time_step), c.put_real("verlet.dt_per_stable", s.dt_per_stable);
+  c.put_real("verlet.changed", s.changed), c.put_real("verlet.released", s.released);
+  c.put_integer("verlet.changing_steps", s.changing_steps), c.put_integer("verlet.step_reductions", s.step_reductions);
+  c.put("verlet.changes", s.changes);
 }
 
 void put_state(Checkpoint& c, const LoadPathState& s) {
@@ -66,6 +71,11 @@ VerletState verlet_state(const Checkpoint& c, std::size_t n) {
   s.e0 = c.real("verlet.e0"), s.e_max = c.real("verlet.e_max"), s.w_max = c.real("verlet.w_max");
   s.u = c.reals("verlet.u", n), s.v = c.reals("verlet.v", n), s.a = c.reals("verlet.a", n);
   s.fint = c.reals("verlet.fint", n), s.multipliers = c.reals("verlet.multipliers"), s.history = c.reals("verlet.history");
+  if (!c.has("verlet.changes")) return s;  // a model that does not change
+  s.stable_time_step = c.real("verlet.stable_time_step"), s.dt_per_stable = c.real("verlet.dt_per_stable");
+  s.changed = c.real("verlet.changed"), s.released = c.real("verlet.released");
+  s.changing_steps = c.integer("verlet.changing_steps"), s.step_reductions = c.integer("verlet.step_reductions");
+  s.changes = c.reals("verlet.changes");
   return s;
 }
 

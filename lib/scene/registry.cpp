@@ -113,7 +113,9 @@ std::vector<SolverEntry> make_solvers() {
                    const BondBreaks b = breaking->apply(x, f);
                    return ChangesMade{b.broken, b.released};
                  },
-                 d->every, [&breaking] { return breaking->stable_time_step(); }};
+                 d->every, [&breaking] { return breaking->stable_time_step(); },
+                 [&breaking] { return breaking->state(); },
+                 [&breaking](const std::vector<double>& s) { breaking->restore(s); }};
     }
     SolveReport r = solve_verlet(p.physics(), p.loading, verlet_options(p.scene.solver), u, v, h.progress, h.observe,
                                  h.verlet_checkpoints, h.verlet_resume, breaking ? &changes : nullptr);

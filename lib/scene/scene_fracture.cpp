@@ -83,9 +83,6 @@ void read_fracture(Fields& top, Scene& s) {
     }
     f.finish();
     if (s.solver.type != "verlet") top.fail("damage", "bonds break during a Verlet run (solver.type verlet)");
-    if (s.output.checkpoint_every > 0)
-      top.fail("damage", "runs with breaking bonds are not checkpointed yet (the broken bonds are not in "
-                         "checkpoint.bin); remove output.checkpoint_every");
     require_breakable_model(top, s, "damage");
     s.damage = d;
   }

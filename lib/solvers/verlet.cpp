@@ -28,18 +28,26 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
                std::vector<double>& u, std::vector<double>& v, Progress* progress,
                const Observer& observe, const Checkpoints<VerletState>& checkpoints,
                const VerletState* resume, const ModelChanges* changes, SolveReport& rep) {
-  if (changes && resume)
-    throw std::invalid_argument("solve_verlet: a run whose model changes (broken bonds) is not resumed from a checkpoint");
+  if (changes && resume && !(changes->save && changes->restore))
+    throw std::invalid_argument("solve_verlet: a run whose model changes (broken bonds) is resumed only when they restore themselves");
+  if (changes && resume && resume->changes.empty())
+    throw std::invalid_argument("solve_verlet: the resumed state holds no record of the model's changes");
+  if (changes && resume) changes->restore(resume->changes);
   const std::size_t n = model.dofs();
   u.resize(n, 0.0);
   v.resize(n, 0.0);
-  if (progress) progress->phase("summing the stiffness rows for the stable time step");
+  if (progress && !(changes && resume)) progress->phase("summing the stiffness rows for the stable time step");
   // The changes keep the row sums they follow: the same step, summed once.
-  rep.stable_time_step = changes && changes->stable_step ? changes->stable_step() : stable_time_step(model);
+  // A resumed run with changes goes on from the step it started with (its model has changed).
+  rep.stable_time_step = changes && resume                  ? resume->stable_time_step
+                         : changes && changes->stable_step ? changes->stable_step()
+                                                           : stable_time_step(model);
   double dt = resume ? resume->dt : opt.dt > 0.0 ? opt.dt : opt.safety * rep.stable_time_step;
   // Kept when changes lower the stable step (0: no finite stable step to follow).
-  const double dt_per_stable =
-      std::isfinite(rep.stable_time_step) && rep.stable_time_step > 0.0 ? dt / rep.stable_time_step : 0.0;
+  const double dt_per_stable = changes && resume ? resume->dt_per_stable
+                               : std::isfinite(rep.stable_time_step) && rep.stable_time_step > 0.0
+                                   ? dt / rep.stable_time_step
+                                   : 0.0;
   auto inv_mass = model.lumped_mass();
   for (auto& m : inv_mass) m = 1.0 / m;
   const double* fext = loading.force.empty() ? nullptr : loading.force.data();
@@ -53,8 +61,9 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   for (const auto& c : loading.reaction_columns(dpp)) rep.history.columns.push_back(c);
   const std::size_t extra = changes ? 2 : 0;  // broken_bonds, released_energy
   if (changes) rep.history.columns.insert(rep.history.columns.end(), {"broken_bonds", "released_energy"});
-  std::size_t changed = 0;  // changes made so far
-  double released = 0.0;    // the strain energy they released (J)
+  std::size_t changed = changes && resume ? std::size_t(resume->changed) : 0;  // changes made so far
+  double released = changes && resume ? resume->released : 0.0;                 // the strain energy they released (J)
+  if (changes && resume) rep.changes.changing_steps = resume->changing_steps, rep.changes.step_reductions = resume->step_reductions;
   rep.history.reserve(opt.steps / std::max<std::int64_t>(opt.history_every, 1) + 2);
   auto factor = [&](double t) { return opt.ramp_time > 0.0 ? std::min(1.0, t / opt.ramp_time) : 1.0; };
   // Prescribed velocities ramp with the loads: the displacement v tau(t), tau the integral of
@@ -234,8 +243,17 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
       if (changes) sample.broken = static_cast<std::int64_t>(changed);
       progress->update(sample);
     }
-    if (checkpoints.due(step))
-      checkpoints.call(VerletState{step, t, dt, work, e0, e_max, w_max, u, v, a, fint, lambda_old, rep.history.values});
+    if (checkpoints.due(step)) {
+      VerletState s;
+      s.step = step, s.time = t, s.dt = dt, s.work = work, s.e0 = e0, s.e_max = e_max, s.w_max = w_max;
+      s.u = u, s.v = v, s.a = a, s.fint = fint, s.multipliers = lambda_old, s.history = rep.history.values;
+      if (changes && changes->save) {
+        s.stable_time_step = rep.stable_time_step, s.dt_per_stable = dt_per_stable, s.changed = double(changed), s.released = released;
+        s.changing_steps = rep.changes.changing_steps, s.step_reductions = rep.changes.step_reductions;
+        s.changes = changes->save();
+      }
+      checkpoints.call(s);
+    }
   }
   rep.converged = true;
   if (progress) progress->finish();

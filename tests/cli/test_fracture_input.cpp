@@ -93,10 +93,6 @@ TEST_CASE("damage needs Verlet, the classical formulation and no checkpoints", "
     const std::string s = with(fracture_scene(), "formulation: classical", "formulation: consistent");
     require_rejected(s, {"damage: needs model.formulation classical (here consistent)"});
   }
-  SECTION("checkpoints") {
-    const std::string s = fracture_scene() + "output: {checkpoint_every: 10}\n";
-    require_rejected(s, {"damage: runs with breaking bonds are not checkpointed yet"});
-  }
 }
 
 TEST_CASE("a precrack of zero length and a velocity off Verlet or at a face are refused by key", "[cli][fracture]") {

@@ -18,12 +18,17 @@ const std::string biaxial = "'" PERINOM_SOURCE_DIR "/examples/biaxial_compressio
 const std::string bar = "'" PERINOM_SOURCE_DIR "/examples/vibrating_bar.yaml'";
 
 /// The summary from "solver" to "wall_time": iterations, residual, reactions, plasticity and
-/// probes, every number in the shortest text that reads back bit for bit.
+/// probes, every number in the shortest text that reads back bit for bit; without the lines
+/// of wall times inside it (a cracking run's solver.fracture: *_seconds*, *_step_ratio).
 std::string results_of(const std::string& summary) {
   const auto from = summary.find("\"solver\""), to = summary.find("\"wall_time\"");
   REQUIRE(from != std::string::npos);
   REQUIRE(to != std::string::npos);
-  return summary.substr(from, to - from);
+  std::istringstream in(summary.substr(from, to - from));
+  std::string out, line;
+  while (std::getline(in, line))
+    if (line.find("_seconds") == std::string::npos && line.find("_step_ratio\"") == std::string::npos) out += line + "\n";
+  return out;
 }
 
 /// load_steps.csv without its wall-time column (seconds, the tenth).
@@ -110,6 +115,42 @@ TEST_CASE("Verlet resumed in place, in a folder the killed run went on writing, 
   CHECK(o.out.find("resuming from killed/checkpoint.bin (step 160, t = ") != std::string::npos);
   CHECK(o.out.find("removed 6 files of an earlier run") != std::string::npos);  // 2 snapshots (.vtu, .csv), .pvd, histories
   require_same_results(d.path / "reference", d.path / "killed");
+}
+
+TEST_CASE("a cracking run resumed from a checkpoint ends bit for bit: broken bonds, armed criterion, lowered step",
+          "[cli][checkpoint][fracture]") {
+  // SENT (instability criterion: armed at one find, s_hg_max fixed then) and Kalthoff-Winkler
+  // (stress criterion), each checkpointed after bonds have broken and before the run ends.
+  const std::string sent = "'" PERINOM_SOURCE_DIR "/examples/sent.yaml'";
+  const std::string kw = "'" PERINOM_SOURCE_DIR "/examples/kalthoff_winkler.yaml'";
+  for (const auto& [scene, every] : {std::pair{sent, 700}, std::pair{kw, 120}}) {
+    INFO(scene);
+    ScratchDir d;
+    const std::string sets = " --set output.vtk_every=100 --set output.csv=true";
+    require_ok(perinom(d, "run " + scene + " --out reference" + sets));
+    const std::string reference = slurp(d.path / "reference" / "summary.json");
+    require_ok(perinom(d, "run " + scene + " --out written --set output.checkpoint_every=" + std::to_string(every) + sets));
+    require_same_results(d.path / "reference", d.path / "written");
+    // Bonds broke before the checkpoint and after it: the history's broken_bonds column.
+    const std::string history = slurp(d.path / "reference" / "history.csv");
+    std::istringstream rows(history);
+    std::string header, line;
+    std::getline(rows, header);
+    long at_checkpoint = -1, at_end = -1;
+    while (std::getline(rows, line)) {
+      const long step = std::stol(line);
+      const long broken = std::lround(std::stod(line.substr(line.find_last_of(',', line.find_last_of(',') - 1) + 1)));
+      if (step == every) at_checkpoint = broken;
+      at_end = broken;
+    }
+    CHECK(at_checkpoint > 0);
+    CHECK(at_end > at_checkpoint);
+    const Outcome o = perinom(d, "run " + scene + " --restart written --out resumed" + sets);
+    require_ok(o);
+    CHECK(o.out.find("resuming from written/checkpoint.bin (step " + std::to_string(every) + ", ") != std::string::npos);
+    require_same_results(d.path / "reference", d.path / "resumed");
+    CHECK(results_of(slurp(d.path / "resumed" / "summary.json")) == results_of(reference));
+  }
 }
 
 TEST_CASE("a thin plate in Verlet resumed from a checkpoint ends bit for bit", "[cli][checkpoint]") {

@@ -74,6 +74,15 @@ class BondBreaking {
   /// The instability criterion: the find() call (counted from 1) that armed it, or -1.
   std::int64_t armed_at_find() const { return armed_find_; }
 
+  /// What a run needs to go on from here (a checkpoint): the counts, the criterion's state
+  /// and the bonds each apply() broke, as numbers (particle indices are exact in a double).
+  std::vector<double> state() const;
+  /// Puts this object and its model, both as built (no bond broken yet), into a state()
+  /// taken from the same scene: each apply()'s bonds broken again, in the same groups and
+  /// order (a stored stabilization is updated in place, so the same sequence of breaks is
+  /// what gives the same bits). Throws std::invalid_argument for a state that does not fit.
+  void restore(const std::vector<double>& state);
+
  private:
   CorrespondenceModel* model_;
   const PointCloud* cloud_;
@@ -96,6 +105,8 @@ class BondBreaking {
                                            double level);
   /// After break_bonds: the counts, and the stiffness rows the breaks changed summed anew.
   std::size_t account(const BondBreaks& b);
+  std::vector<BondPair> died_;       // every bond apply() broke, in order
+  std::vector<std::size_t> groups_;  // how many of them each apply() broke
   std::size_t broken_ = 0, detached_ = 0;
   std::int64_t finds_ = 0, armed_find_ = -1;
 };

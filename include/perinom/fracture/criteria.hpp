@@ -36,6 +36,8 @@ class InstabilityCriterion {
   double s_max() const { return s_max_; }
   /// s_hg_max once armed (0 before).
   double threshold() const { return s_hg_max_; }
+  /// Armed with s_hg_max = threshold, as an earlier run left it (a resumed checkpoint).
+  void rearm(double threshold) { armed_ = true, s_hg_max_ = threshold; }
 
  private:
   double s_max_;

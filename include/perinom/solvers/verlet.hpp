@@ -41,6 +41,13 @@ struct VerletState {
   std::vector<double> u, v, a, fint;
   std::vector<double> multipliers;  ///< Galerkin supports that move: their multipliers at u (N), else empty
   std::vector<double> history;      ///< the history rows so far (History::values)
+  /// A run whose model changes (ModelChanges; otherwise all zero and empty): the stable step
+  /// it started with (s) and the ratio of its first dt to it, the changes made and the energy they released (J), the steps that
+  /// made changes and those that lowered dt, and ModelChanges::save().
+  double stable_time_step = 0.0, dt_per_stable = 0.0;
+  double changed = 0.0, released = 0.0;
+  std::int64_t changing_steps = 0, step_reductions = 0;
+  std::vector<double> changes;
 };
 
 /// What ModelChanges::apply made: how many changes, and the strain energy they released.
@@ -66,6 +73,11 @@ struct ModelChanges {
   /// step to the stable step it started with: when a change lowers the stable step, dt
   /// follows it down (never up again), so broken bonds cannot make the scheme unstable.
   std::function<double()> stable_step;
+  /// Optional, both or neither: what the changes are so far, as numbers (a checkpoint's
+  /// VerletState::changes), and the model put back into such a state (the model as built
+  /// before). Without them a run with changes is not resumed.
+  std::function<std::vector<double>()> save;
+  std::function<void(const std::vector<double>&)> restore;
 };
 
 /// The stable step 2 / omega_max, with omega_max^2 bounded by max_i sum_j |K_ij| / m_i
@@ -84,7 +96,8 @@ double stable_time_step(const Model& model);
 /// integration continues from it, and ends with the u, v, report and history the
 /// uninterrupted one would.
 /// With `changes` the history gains the columns broken_bonds and released_energy; such a run
-/// is not checkpointed (its changes are not in VerletState: resume is refused).
+/// is resumed only when the changes can save and restore themselves (ModelChanges::save):
+/// restore() puts the model back first, the stable step and the counts come from the state.
 SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptions& options,
                          std::vector<double>& u, std::vector<double>& v,
                          Progress* progress = nullptr, const Observer& observe = {},
