@@ -7,8 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "perinom/fracture/bond_breaking.hpp"
-#include "perinom/geometry/region.hpp"
+#include "perinom/scene/scene_breaking.hpp"
 #include "plate_keys.hpp"
 #include "scene_sections.hpp"
 
@@ -98,34 +97,11 @@ std::vector<SolverEntry> make_solvers() {
   verlet.checkpoint_state = "verlet";
   verlet.solve = [](Problem& p, std::vector<double>& u, const SolveHooks& h) {
     std::vector<double> v;
-    std::optional<BondBreaking> breaking;
-    ModelChanges changes;
-    if (const auto& d = p.scene.damage) {
-      DamageCriterion c = DamageCriterion::instability;
-      parse_damage_criterion(d->criterion, c);
-      const double parameter = c == DamageCriterion::instability ? d->s_max : c == DamageCriterion::stretch ? d->s_c : d->f_t;
-      breaking.emplace(p.as<CorrespondenceModel>(), p.cloud, c, parameter);
-      for (const Region& zone : d->no_fail) breaking->hold(select(zone, p.scene.geometry, p.cloud));
-      // find runs at the u whose force the step just took (ModelChanges): its grad u is kept.
-      const CorrespondenceModel* model = &p.as<CorrespondenceModel>();
-      changes = {[&breaking, model](const double* x) { return breaking->find(x, model->last_gradient()); },
-                 [&breaking](const double* x, double* f) {
-                   const BondBreaks b = breaking->apply(x, f);
-                   return ChangesMade{b.broken, b.released};
-                 },
-                 d->every, [&breaking] { return breaking->stable_time_step(); },
-                 [&breaking] { return breaking->state(); },
-                 [&breaking](const std::vector<double>& s) { breaking->restore(s); }};
-    }
+    std::optional<SceneBreaking> breaking;
+    if (p.scene.damage) breaking.emplace(p);
     SolveReport r = solve_verlet(p.physics(), p.loading, verlet_options(p.scene.solver), u, v, h.progress, h.observe,
-                                 h.verlet_checkpoints, h.verlet_resume, breaking ? &changes : nullptr);
-    if (breaking) {
-      r.changes.broken = static_cast<std::int64_t>(breaking->broken());
-      r.changes.detached = static_cast<std::int64_t>(p.as<CorrespondenceModel>().G().detached().size());
-      // find() runs every `every` steps from step `every`: its k-th call is at step k every.
-      if (breaking->armed_at_find() > 0) r.changes.armed_step = breaking->armed_at_find() * p.scene.damage->every;
-      r.changes.hourglass_threshold = breaking->hourglass_threshold();
-    }
+                                 h.verlet_checkpoints, h.verlet_resume, breaking ? &breaking->changes() : nullptr);
+    if (breaking) breaking->report(r);
     return r;
   };
   // Newton's own tolerances: its options struct's defaults, not ADR's.

@@ -7,6 +7,7 @@
 #include "perinom/models/loading.hpp"
 #include "perinom/models/model.hpp"
 #include "perinom/solvers/adr.hpp"
+#include "perinom/solvers/model_changes.hpp"
 
 namespace perinom {
 
@@ -48,36 +49,6 @@ struct VerletState {
   double changed = 0.0, released = 0.0;
   std::int64_t changing_steps = 0, step_reductions = 0;
   std::vector<double> changes;
-};
-
-/// What ModelChanges::apply made: how many changes, and the strain energy they released.
-struct ChangesMade {
-  std::size_t count = 0;
-  double released = 0.0;  ///< J, at the state the changes were made at
-};
-
-/// Irreversible changes of the model during a run (bonds that break: fracture/bond_breaking.hpp).
-/// Every `every` steps, at the end of the step (u and v updated on the model as it was),
-/// find(u) counts those due at u; when any are, apply(u, f) makes them, with f the internal
-/// force at u the step took last, and leaves in f the changed model's force at u, which the
-/// next step starts from. It returns the strain energy the changes released at u (a history
-/// column, so that kinetic + strain + released - external work stays at its initial value).
-/// The stable step follows the changes when stable_step is given (below).
-struct ModelChanges {
-  /// Called at the end of a step, at the u whose internal force the step evaluated last.
-  std::function<std::size_t(const double* u)> find;
-  std::function<ChangesMade(const double* u, double* f)> apply;
-  std::int64_t every = 1;
-  /// Optional: the model's stable time step now (called once before the first step, in place
-  /// of stable_time_step(model), and after each apply()). The run keeps the ratio of its
-  /// step to the stable step it started with: when a change lowers the stable step, dt
-  /// follows it down (never up again), so broken bonds cannot make the scheme unstable.
-  std::function<double()> stable_step;
-  /// Optional, both or neither: what the changes are so far, as numbers (a checkpoint's
-  /// VerletState::changes), and the model put back into such a state (the model as built
-  /// before). Without them a run with changes is not resumed.
-  std::function<std::vector<double>()> save;
-  std::function<void(const std::vector<double>&)> restore;
 };
 
 /// The stable step 2 / omega_max, with omega_max^2 bounded by max_i sum_j |K_ij| / m_i
