@@ -67,15 +67,18 @@ SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double
               opt.scheme == LoadPathScheme::lbc ? "loading-balance-correction"
               : opt.scheme == LoadPathScheme::newton ? "Newton with the consistent tangent"
                                                      : "plain ADR, plastic update in every iteration");
-  std::printf("  %5s %5s %6s %10s %6s %8s %8s %8s %10s %8s\n", "stage", "step", "factor", "iterations",
-              "rounds", "flagged", "yielding", "plastic", "residual", "seconds");
+  const bool breaking = scene.damage.has_value();
+  std::printf("  %5s %5s %6s %10s %6s %8s %8s %8s %10s %8s%s\n", "stage", "step", "factor", "iterations",
+              "rounds", "flagged", "yielding", "plastic", "residual", "seconds", breaking ? "   broken" : "");
   std::int64_t done = resume ? steps_done(*resume, p.stages) : 0;  // load steps over all stages
   auto after_step = [&](const LoadStepRecord& r, const std::vector<double>& u) {
     ++done;
     probes.record(p, r, u);
-    std::printf("  %5d %5d %6.3f %10lld %6d %8zu %8zu %8zu %10.3e %8.3f\n", r.stage, r.step, r.load_factor,
+    std::printf("  %5d %5d %6.3f %10lld %6d %8zu %8zu %8zu %10.3e %8.3f", r.stage, r.step, r.load_factor,
                 static_cast<long long>(r.iterations), r.rounds, r.newly_flagged, r.yielding, r.plastic,
                 r.residual, r.seconds);
+    if (breaking) std::printf(" %8zu", r.broken);
+    std::printf("\n");
     std::fflush(stdout);
     const auto& want = scene.output.vtk_steps;
     const bool listed = std::find(want.begin(), want.end(), done) != want.end();

@@ -49,7 +49,7 @@ io::Json pin_results(const Problem& p) {
 }
 
 void add_reaction_results(Model& model, const Loading& loading, double s, const std::vector<double>& u,
-                          bool dynamic, io::Json& summary) {
+                          bool dynamic, io::Json& summary, double carried) {
   if (!loading.has_supports()) return;
   const int dpp = model.dofs_per_particle();
   std::vector<double> fint(model.dofs()), R(loading.support_names.size() * dpp);
@@ -81,8 +81,9 @@ void add_reaction_results(Model& model, const Loading& loading, double s, const 
   // none, to the sum of the nodal loads' magnitudes, or else to the largest reaction.
   const double net = length(applied.data(), dpp);
   const bool balanced = net <= 1e-6 * gross;
-  const double scale = !balanced ? net : gross > 0.0 ? gross : largest;
-  const char* over = !balanced ? "|applied|" : gross > 0.0 ? "sum |nodal load|" : "largest reaction";
+  const bool broke = gross == 0.0 && carried > largest;  // carried: a load path broken apart
+  const double scale = !balanced ? net : gross > 0.0 ? gross : broke ? carried : largest;
+  const char* over = !balanced ? "|applied|" : gross > 0.0 ? "sum |nodal load|" : broke ? "largest reaction carried" : "largest reaction";
   const double error = scale > 0.0 ? length(sum.data(), dpp) / scale : 0.0;
   std::printf("perinom: equilibrium: applied loads %s N, reactions %s N, error |applied + reactions| / %s = %.3e\n",
               vector_text(applied.data(), dpp).c_str(), vector_text(total.data(), dpp).c_str(), over, error);

@@ -19,8 +19,10 @@ io::Json pin_results(const Problem& p);
 /// summary["reactions"] (NAME: [R per component], N) and summary["equilibrium"] (applied,
 /// reactions: the sums; error; relative_to: which denominator).
 /// A dynamic run (Verlet) gets the reactions only: inertia balances its loads too.
-/// A distributed model's sums go over the ranks (every rank calls it).
+/// A distributed model's sums go over the ranks (every rank calls it). `carried` (N, 0: none)
+/// is the largest reaction a load path had before its end: after the body has broken apart,
+/// the last reactions are noise, and the error is taken over the load it carried instead.
 void add_reaction_results(Model& model, const Loading& loading, double s, const std::vector<double>& u,
-                          bool dynamic, io::Json& summary);
+                          bool dynamic, io::Json& summary, double carried = 0.0);
 
 }  // namespace perinom::cli

@@ -235,8 +235,7 @@ int run(const Options& opt) {
       std::printf("perinom: note: %lld particle(s) lost a family that spans the %s and were detached: they carry no "
                   "stress and move freely (summary.json solver.fracture.detached_particles)\n",
                   static_cast<long long>(c.detached), scene.dim == 2 ? "plane" : "space");
-    f["time_step_reductions"] = static_cast<long long>(c.step_reductions);
-    f["final_time_step"] = c.final_dt;
+    if (dynamic) f["time_step_reductions"] = static_cast<long long>(c.step_reductions), f["final_time_step"] = c.final_dt;
     if (c.step_reductions > 0)
       std::printf("perinom: note: broken bonds lowered the stable time step %lld time(s); the run kept its ratio to "
                   "it and ended at dt = %.4g s (summary.json solver.fracture.final_time_step)\n",
@@ -248,11 +247,13 @@ int run(const Options& opt) {
                   "bonds whose hourglass strain exceeds s_hg_max = %.4g break (summary.json solver.fracture.armed_step)\n",
                   static_cast<long long>(c.armed_step), c.hourglass_threshold);
     }
-    f["intact_step_seconds"] = intact;
-    f["find_seconds_per_step"] = find;
-    f["break_seconds_per_breaking_step"] = change;
-    f["looking_step_ratio"] = intact > 0.0 ? (intact + find) / intact : 0.0;
-    f["breaking_step_ratio"] = intact > 0.0 ? (intact + find + change) / intact : 0.0;
+    if (dynamic) {  // a load path's cost is in load_steps.csv, step by step
+      f["intact_step_seconds"] = intact;
+      f["find_seconds_per_step"] = find;
+      f["break_seconds_per_breaking_step"] = change;
+      f["looking_step_ratio"] = intact > 0.0 ? (intact + find) / intact : 0.0;
+      f["breaking_step_ratio"] = intact > 0.0 ? (intact + find + change) / intact : 0.0;
+    }
     solver["fracture"] = f;
   }
   if (rep.diverged) {
@@ -265,7 +266,18 @@ int run(const Options& opt) {
   if (failure.empty()) {
     // The final state's load factor: 1, or Verlet's ramp where the run ended.
     const double s_end = dynamic && scene.solver.ramp_time > 0.0 ? std::min(1.0, rep.end_time / scene.solver.ramp_time) : 1.0;
-    add_reaction_results(p.physics(), scene.load_path() ? p.stages.back().loading : p.loading, s_end, u, dynamic, summary);
+    // A load path that broke bonds: the largest support reaction of its steps.
+    double carried = 0.0;
+    if (scene.damage && scene.load_path()) {
+      const auto& h = rep.history;
+      for (std::size_t c = 0; c + 1 < h.columns.size(); ++c) {
+        const std::string& name = h.columns[c];
+        if (name.size() < 4 || name.compare(name.size() - 3, 2, ".R") != 0) continue;
+        for (std::size_t at = c; at < h.values.size(); at += h.columns.size()) carried = std::max(carried, std::abs(h.values[at]));
+      }
+    }
+    add_reaction_results(p.physics(), scene.load_path() ? p.stages.back().loading : p.loading, s_end, u, dynamic, summary,
+                         carried);
   }
   if (scene.solver.check == "newton" && failure.empty()) {
     timer.start("newton check");

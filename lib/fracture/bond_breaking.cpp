@@ -224,6 +224,10 @@ void BondBreaking::restore(const std::vector<double>& s) {
     at += 1 + 2 * std::size_t(s[at]);
   }
   if (at != s.size()) throw bad("the state has values after its last group");
+  // The row sums as a run keeps them: summed over every row of the model as built, then
+  // updated on the rows each group changes (a sum over every row at the end would differ in
+  // the last bits: its rows are accumulated in another order).
+  stable_time_step();
   at = 6;
   for (std::size_t g = 0; g < std::size_t(s[5]); ++g) {
     due_.clear();

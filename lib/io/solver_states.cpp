@@ -51,6 +51,7 @@ void put_state(Checkpoint& c, const LoadPathState& s) {
   c.put("load_path.plastic", s.plastic);
   c.put("load_path.flags", std::vector<std::int64_t>(s.flags.begin(), s.flags.end()));
   c.put("load_path.history", s.history);
+  if (!s.changes.empty()) c.put("load_path.changes", s.changes), c.put_real("load_path.carried", s.carried);  // bonds that broke
 }
 
 AdrState adr_state(const Checkpoint& c, std::size_t n) {
@@ -103,6 +104,7 @@ LoadPathState load_path_state(const Checkpoint& c, std::size_t n, std::size_t hi
   s.plastic = points;
   for (const std::int64_t flag : flags) s.flags.push_back(static_cast<std::uint8_t>(flag != 0));
   s.history = c.reals("load_path.history");
+  if (c.has("load_path.changes")) s.changes = c.reals("load_path.changes"), s.carried = c.real("load_path.carried");
   return s;
 }
 

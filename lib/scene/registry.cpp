@@ -101,7 +101,7 @@ std::vector<SolverEntry> make_solvers() {
     if (p.scene.damage) breaking.emplace(p);
     SolveReport r = solve_verlet(p.physics(), p.loading, verlet_options(p.scene.solver), u, v, h.progress, h.observe,
                                  h.verlet_checkpoints, h.verlet_resume, breaking ? &breaking->changes() : nullptr);
-    if (breaking) breaking->report(r);
+    if (breaking) breaking->report(r, true);
     return r;
   };
   // Newton's own tolerances: its options struct's defaults, not ADR's.
@@ -263,8 +263,12 @@ SolveReport solve_problem(Problem& p, std::vector<double>& u, const SolveHooks& 
   if (!entry) throw std::logic_error("solve_problem: solver.type " + spec.type + " is not registered");
   if (p.scene.load_path()) {
     if (!entry->load_path) throw std::logic_error("solve_problem: " + spec.type + " does not solve load paths");
-    return solve_load_path(p.physics(), p.stages, load_path_options(p), u, h.progress, h.after_step,
-                           h.load_path_checkpoints, h.load_path_resume);
+    std::optional<SceneBreaking> breaking;
+    if (p.scene.damage) breaking.emplace(p);
+    SolveReport r = solve_load_path(p.physics(), p.stages, load_path_options(p), u, h.progress, h.after_step,
+                                    h.load_path_checkpoints, h.load_path_resume, breaking ? &breaking->changes() : nullptr);
+    if (breaking) breaking->report(r, false);
+    return r;
   }
   if (!entry->single) throw std::logic_error("solve_problem: " + spec.type + " solves load paths only");
   return entry->solve(p, u, h);

@@ -27,13 +27,14 @@ SceneBreaking::SceneBreaking(Problem& p) : p_(&p) {
               d->every,
               [b] { return b->stable_time_step(); },
               [b] { return b->state(); },
-              [b](const std::vector<double>& s) { b->restore(s); }};
+              [b](const std::vector<double>& s) { b->restore(s); },
+              [b]() -> const std::vector<double>& { return b->row_sums(); }};
 }
 
-void SceneBreaking::report(SolveReport& r) const {
+void SceneBreaking::report(SolveReport& r, bool verlet) const {
   r.changes.broken = static_cast<std::int64_t>(breaking_->broken());
   r.changes.detached = static_cast<std::int64_t>(p_->as<CorrespondenceModel>().G().detached().size());
-  if (breaking_->armed_at_find() > 0) r.changes.armed_step = breaking_->armed_at_find() * p_->scene.damage->every;
+  if (verlet && breaking_->armed_at_find() > 0) r.changes.armed_step = breaking_->armed_at_find() * p_->scene.damage->every;
   r.changes.hourglass_threshold = breaking_->hourglass_threshold();
 }
 

@@ -82,7 +82,17 @@ void read_fracture(Fields& top, Scene& s) {
       item.finish();
     }
     f.finish();
-    if (s.solver.type != "verlet") top.fail("damage", "bonds break during a Verlet run (solver.type verlet)");
+    // Quasi-static breaking: a load path (stages) balanced by ADR or LBC, each step a fixed
+    // point of balance and breaking (solve_load_path).
+    const bool load_path = !s.stages.empty() && (s.solver.type == "adr" || s.solver.type == "lbc");
+    if (s.solver.type != "verlet" && !load_path)
+      top.fail("damage", "bonds break during a Verlet run (solver.type verlet) or on a load path (stages, solved by "
+                         "adr or lbc), not with solver.type " + s.solver.type + (s.stages.empty() ? " without stages" : ""));
+    if (load_path && s.plasticity)
+      top.fail("damage", "bond breaking in a drucker_prager body is not built yet (the stress criterion would read "
+                         "the elastic stress of grad u)");
+    if (load_path && d.every != 1)
+      f.fail("every", "applies to Verlet steps; a load path looks for bonds to break after every balance");
     require_breakable_model(top, s, "damage");
     s.damage = d;
   }

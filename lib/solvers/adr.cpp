@@ -1,5 +1,6 @@
 #include "perinom/solvers/adr.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -20,6 +21,15 @@ AdrRelaxation::AdrRelaxation(Model& model, const AdrOptions& opt, Progress* prog
   sample_.limit = opt.max_iterations;
   sample_.load_steps = opt.load_steps;
   sample_.target = opt.tolerance;
+}
+
+void AdrRelaxation::raise_density(const std::vector<double>& row_sums) {
+  if (row_sums.size() != inv_lambda_.size())
+    throw std::invalid_argument("AdrRelaxation::raise_density: " + std::to_string(row_sums.size()) + " row sums for " +
+                                std::to_string(inv_lambda_.size()) + " dofs");
+  if (first_inv_lambda_.empty()) first_inv_lambda_ = inv_lambda_;
+  for (std::size_t k = 0; k < inv_lambda_.size(); ++k)
+    inv_lambda_[k] = row_sums[k] > 0.0 ? std::min(first_inv_lambda_[k], 4.0 / row_sums[k]) : first_inv_lambda_[k];
 }
 
 void AdrRelaxation::resume(const AdrState& st) {
@@ -79,7 +89,7 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     if (!std::isfinite(fnorm) || !std::isfinite(reaction2))
       throw DivergenceError("ADR: the internal force became NaN or Inf at iteration " +
                             std::to_string(rep.iterations + 1), rep.iterations + 1);
-    const double load = std::max(force_norm, std::sqrt(reaction2));
+    const double load = std::max({force_norm, std::sqrt(reaction2), load_floor_});
     return load > 0.0 ? fnorm / load : fnorm;
   };
 

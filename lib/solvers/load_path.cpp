@@ -1,5 +1,6 @@
 #include "perinom/solvers/load_path.hpp"
 
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 
@@ -44,9 +45,14 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
                             const LoadPathOptions& opt, std::vector<double>& u, Progress* progress,
                             const std::function<void(const LoadStepRecord&, const std::vector<double>&)>&
                                 after_step,
-                            const Checkpoints<LoadPathState>& checkpoints, const LoadPathState* resume) {
+                            const Checkpoints<LoadPathState>& checkpoints, const LoadPathState* resume,
+                            const ModelChanges* changes) {
   if (opt.scheme == LoadPathScheme::newton && (checkpoints.every > 0 || resume))
     throw std::invalid_argument("solve_load_path: the Newton scheme is not checkpointed (KINSOL's state is not kept)");
+  if (opt.scheme == LoadPathScheme::newton && changes)
+    throw std::invalid_argument("solve_load_path: bonds break on the lbc and adr schemes, not Newton's");
+  if (changes && (checkpoints.every > 0 || resume) && !(changes->save && changes->restore))
+    throw std::invalid_argument("solve_load_path: changes that cannot save and restore themselves are not checkpointed");
   SolveReport rep;
   rep.history.columns = {"stage", "step", "load_factor", "iterations", "rounds", "newly_flagged",
                          "yielding", "plastic", "residual", "seconds"};
@@ -58,7 +64,8 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
   for (const auto& st : stages)
     for (const auto& name : st.loading.support_names) supports.add_support(name);
   for (const auto& c : supports.reaction_columns(d)) rep.history.columns.push_back(c);
-  std::vector<double> fint(supports.has_supports() ? model.dofs() : 0), stage_reactions;
+  if (changes) rep.history.columns.push_back("broken_bonds");
+  std::vector<double> fint(supports.has_supports() || changes ? model.dofs() : 0), stage_reactions;
   ModelHistory* plastic = model.history();
   if (plastic)
     plastic->set_history_mode(opt.scheme == LoadPathScheme::lbc ? HistoryMode::flagged : HistoryMode::return_map);
@@ -75,9 +82,26 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
   bool continuing = false;  // the resumed stage has steps left
   if (resume) {
     done = detail::restore(model, stages, *resume, u, rep);
+    if (changes) {
+      if (resume->changes.empty()) throw std::invalid_argument("solve_load_path: the resumed state holds no record of the changes");
+      changes->restore(resume->changes);
+      // The steps that broke bonds, from the rows so far (broken_bonds is the last column).
+      const std::size_t width = rep.history.columns.size();
+      for (std::size_t at = width - 1; at < rep.history.values.size(); at += width)
+        if (rep.history.values[at] > 0.0) ++rep.changes.changing_steps;
+    }
     first_stage = std::size_t(resume->stage), first_step = resume->step + 1;
     continuing = first_step <= stages[first_stage].steps;
     if (!continuing) ++first_stage, first_step = 1;
+  }
+  // A refreshed row can be stiffer than it was: ADR's density follows the row sums the
+  // changes keep (summed once here, then on the rows each change touches).
+  const bool follow_density = changes && changes->stable_step && changes->row_sums && adr;
+  double carried = resume ? resume->carried : 0.0;  // the largest reaction norm so far
+  if (changes && adr) adr->set_load_floor(carried);
+  if (follow_density) {
+    changes->stable_step();
+    adr->raise_density(changes->row_sums());
   }
 
   auto record = [&](LoadStepRecord& r, const std::vector<double>& xi0, double t0) {
@@ -97,6 +121,7 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
         for (int a = 0; a < d; ++a)
           rep.history.values[at + supports.add_support(loading.support_names[g]) * d + a] = stage_reactions[g * d + a];
     }
+    if (changes) rep.history.values.push_back(double(r.broken));
     rep.residual = r.residual;
     if (after_step) after_step(r, u);
   };
@@ -171,18 +196,42 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
             throw SolveError(where(stage, int(k), step) + ": the balance did not converge in " +
                              std::to_string(balance.iterations) + " ADR iterations (residual " +
                              std::to_string(balance.residual) + "); raise solver.max_iterations or loosen the tolerance");
-          if (opt.scheme != LoadPathScheme::lbc || !plastic) break;
-          const std::size_t flagged = plastic->flag_violations(opt.yield_tolerance);
-          r.newly_flagged += flagged;
-          if (flagged == 0) break;
+          if (opt.scheme == LoadPathScheme::lbc && plastic) {
+            const std::size_t flagged = plastic->flag_violations(opt.yield_tolerance);
+            r.newly_flagged += flagged;
+            if (flagged > 0) {
+              if (r.rounds >= opt.max_rounds)
+                throw SolveError(where(stage, int(k), step) + ": particles still yielding after " +
+                                 std::to_string(r.rounds) + " correction rounds (solver.max_rounds)");
+              continue;
+            }
+          }
+          if (!changes) break;
+          // The balanced state with the changes due there made; a fixed point when none are.
+          model.follow_loads(stage.loading, r.load_factor);
+          model.internal_force(u.data(), fint.data());
+          double reaction2 = 0.0;
+          for (const auto dof : stage.loading.fixed) reaction2 += fint[dof] * fint[dof];
+          if (std::sqrt(reaction2) > carried) carried = std::sqrt(reaction2), adr->set_load_floor(carried);
+          const std::size_t due = changes->find(u.data());
+          if (due == 0) break;
+          // The cap: the state left is the last balance, its breaks made, the due ones not.
           if (r.rounds >= opt.max_rounds)
-            throw SolveError(where(stage, int(k), step) + ": particles still yielding after " +
-                             std::to_string(r.rounds) + " correction rounds (solver.max_rounds)");
+            throw SolveError(where(stage, int(k), step) + ": bonds still breaking after " + std::to_string(r.rounds) +
+                             " balances (solver.max_rounds): " + std::to_string(r.broken) + " broke in this step, " +
+                             std::to_string(due) + " more were due");
+          r.broken += changes->apply(u.data(), fint.data()).count;
+          if (follow_density) changes->stable_step(), adr->raise_density(changes->row_sums());
         }
         rep.iterations += r.iterations;
+        if (r.broken > 0) ++rep.changes.changing_steps;
         if (plastic) plastic->commit(u.data());
         record(r, xi0, t0);
-        if (checkpoints.due(done)) checkpoints.call(detail::state_after(model, stages, int(k), step, u, u_prev, rep));
+        if (checkpoints.due(done)) {
+          LoadPathState st = detail::state_after(model, stages, int(k), step, u, u_prev, rep);
+          if (changes) st.changes = changes->save(), st.carried = carried;
+          checkpoints.call(st);
+        }
       }
     }
     rep.converged = true;

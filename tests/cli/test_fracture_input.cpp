@@ -83,11 +83,22 @@ TEST_CASE("a damage criterion and its parameter are checked by key", "[cli][frac
   }
 }
 
-TEST_CASE("damage needs Verlet, the classical formulation and no checkpoints", "[cli][fracture]") {
+TEST_CASE("damage needs Verlet or a load path, and the classical formulation", "[cli][fracture]") {
   SECTION("a static solver") {
     const std::string s = with(with(fracture_scene(), "type: verlet, steps: 20", "type: adr"), "velocity: {y: 1.0}",
                                "displacement: {y: 1.0e-5}");
-    require_rejected(s, {"damage: bonds break during a Verlet run (solver.type verlet)"});
+    require_rejected(s, {"damage: bonds break during a Verlet run (solver.type verlet) or on a load path (stages, "
+                         "solved by adr or lbc), not with solver.type adr without stages"});
+  }
+  SECTION("a load path checks after every balance") {
+    const std::string s = with(slurp(PERINOM_SOURCE_DIR "/tests/data/brittle_bar.yaml"), "  f_t: 1.0e6\n", "  f_t: 1.0e6\n  every: 2\n");
+    require_rejected(s, {"damage.every: applies to Verlet steps; a load path looks for bonds to break after every balance"});
+  }
+  SECTION("a plastic body") {
+    const std::string s = with(with(slurp(PERINOM_SOURCE_DIR "/tests/data/brittle_bar.yaml"), "material: {type: linear_elastic,",
+                                    "material: {type: drucker_prager, friction_angle: 30.0, cohesion: 1.0e6,"),
+                               "plane: stress}", "plane: strain}");
+    require_rejected(s, {"damage: bond breaking in a drucker_prager body is not built yet"});
   }
   SECTION("the consistent formulation") {
     const std::string s = with(fracture_scene(), "formulation: classical", "formulation: consistent");

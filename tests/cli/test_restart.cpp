@@ -153,6 +153,22 @@ TEST_CASE("a cracking run resumed from a checkpoint ends bit for bit: broken bon
   }
 }
 
+TEST_CASE("a load path that breaks bonds resumed after the break ends bit for bit", "[cli][checkpoint][fracture][load_path]") {
+  // The brittle bar without grips: it fails at load step 118 and breaks 4 bonds more at 137
+  // and 165; resumed at 120, the restored bonds, ADR's density after them, the load the
+  // residual is measured against and the step count must all be the run's.
+  ScratchDir d;
+  const std::string scene = "'" PERINOM_SOURCE_DIR "/tests/data/brittle_bar.yaml' --set 'damage.no_fail=[]'";
+  require_ok(perinom(d, "run " + scene + " --out reference"));
+  require_ok(perinom(d, "run " + scene + " --out written --set output.checkpoint_every=120"));
+  require_same_results(d.path / "reference", d.path / "written");
+  const Outcome o = perinom(d, "run " + scene + " --restart written --out resumed");
+  require_ok(o);
+  CHECK(o.out.find("resuming from written/checkpoint.bin (load step 120 of stage 1)") != std::string::npos);
+  require_same_results(d.path / "reference", d.path / "resumed");
+  CHECK(slurp(d.path / "reference" / "summary.json").find("\"breaking_steps\": 3") != std::string::npos);
+}
+
 TEST_CASE("a thin plate in Verlet resumed from a checkpoint ends bit for bit", "[cli][checkpoint]") {
   ScratchDir d;
   const std::string plate = "'" PERINOM_SOURCE_DIR "/examples/thin_plate_clamped.yaml'";

@@ -64,6 +64,8 @@ class BondBreaking {
   /// solve_verlet's): the first call sums every stiffness row; after that each apply() sums
   /// anew only the rows its breaks change (the refreshed rows and their families).
   double stable_time_step();
+  /// The stiffness row sums per dof behind stable_time_step() (empty before its first call).
+  const std::vector<double>& row_sums() const { return row_sums_; }
 
   /// Bonds broken so far by apply() (pairs).
   std::size_t broken() const { return broken_; }
@@ -80,7 +82,9 @@ class BondBreaking {
   /// Puts this object and its model, both as built (no bond broken yet), into a state()
   /// taken from the same scene: each apply()'s bonds broken again, in the same groups and
   /// order (a stored stabilization is updated in place, so the same sequence of breaks is
-  /// what gives the same bits). Throws std::invalid_argument for a state that does not fit.
+  /// what gives the same bits), with the stiffness row sums summed before them and kept
+  /// through them, as a run that asked for stable_time_step() before breaking keeps them
+  /// (Verlet and load paths do). Throws std::invalid_argument for a state that does not fit.
   void restore(const std::vector<double>& state);
 
  private:

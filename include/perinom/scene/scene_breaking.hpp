@@ -20,9 +20,9 @@ class SceneBreaking {
 
   const ModelChanges& changes() const { return changes_; }
   /// The counts a run reports (SolveReport::changes): bonds broken, particles detached and,
-  /// for the instability criterion, the Verlet step it armed at (find() runs every `every`
-  /// steps from step `every`) and its s_hg_max.
-  void report(SolveReport& r) const;
+  /// for the instability criterion, its s_hg_max and, in a Verlet run (`verlet`), the step
+  /// it armed at (find() runs every `every` steps from step `every`).
+  void report(SolveReport& r, bool verlet) const;
 
  private:
   Problem* p_;

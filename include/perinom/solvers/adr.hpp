@@ -84,6 +84,16 @@ class AdrRelaxation {
   /// The next balance() continues the iterations of `state` (its u is balance's u, its load
   /// factor balance's s) instead of starting from rest; rep's counters are the caller's to set.
   void resume(const AdrState& state);
+  /// After the model changed (bonds broke: a refreshed row can be stiffer than before): the
+  /// density of each dof k becomes the larger of row_sums[k] / 4 and its density before the
+  /// first change (so it depends on the model now, not on the changes' order: a resumed run
+  /// gets the same; a detached dof, a zero row, keeps its density).
+  void raise_density(const std::vector<double>& row_sums);
+  /// The residual is relative to the larger of the load norm and `norm` (N): a body that has
+  /// broken apart under displacement control carries no load, and its residual is measured
+  /// against the load it carried before (a load path with bond breaking passes its largest
+  /// reaction norm so far). 0, the default, leaves the load norm alone.
+  void set_load_floor(double norm) { load_floor_ = norm; }
 
  private:
   /// Appends the supports' reactions at the last force evaluation to the history's last row.
@@ -94,6 +104,8 @@ class AdrRelaxation {
   Progress* progress_;
   ProgressSample sample_;
   std::vector<double> inv_lambda_, v_, f_, f_old_, fint_, last_good_;
+  std::vector<double> first_inv_lambda_;  // before raise_density's first call
+  double load_floor_ = 0.0;
   Checkpoints<AdrState> checkpoints_;
   bool resuming_ = false;
   double resume_r_ = 0.0, resume_du_ = 0.0;

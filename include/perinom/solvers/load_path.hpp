@@ -12,6 +12,7 @@
 #include "perinom/models/model_history.hpp"
 #include "perinom/models/tangent_model.hpp"
 #include "perinom/solvers/adr.hpp"
+#include "perinom/solvers/model_changes.hpp"
 #include "perinom/solvers/newton.hpp"
 
 namespace perinom {
@@ -30,7 +31,7 @@ struct LoadPathOptions {
   AdrOptions adr;          ///< tolerances; max_iterations per balance (per load step for every_iteration)
   NewtonOptions newton;    ///< tolerances (load_steps and after_step are set per stage)
   double yield_tolerance = 1e-6;  ///< LBC: f > tol * m (A I1 + B) flags a particle
-  int max_rounds = 1000;          ///< LBC: balance-correction rounds per load step
+  int max_rounds = 1000;          ///< balance rounds per load step: LBC's corrections and bond breaking
 };
 
 /// What one load step took.
@@ -42,6 +43,7 @@ struct LoadStepRecord {
   std::size_t newly_flagged = 0;      ///< LBC: particles flagged in this step
   std::size_t yielding = 0;           ///< particles whose xi grew in this step
   std::size_t plastic = 0;            ///< particles with xi > 0
+  std::size_t broken = 0;             ///< with changes: bonds broken in this step
   double residual = 0.0;              ///< relative residual at the end of the step
   double seconds = 0.0;
 };
@@ -64,6 +66,8 @@ struct LoadPathState {
   std::vector<double> plastic;
   std::vector<std::uint8_t> flags;
   std::vector<double> history;                ///< the history rows so far (History::values)
+  std::vector<double> changes;                ///< with changes: ModelChanges::save(), else empty
+  double carried = 0.0;                       ///< with changes: the largest reaction norm so far (N)
 };
 
 /// The load steps a state has done, counted over all stages (as output.vtk_steps counts).
@@ -80,11 +84,19 @@ int steps_done(const LoadPathState& state, const std::vector<LoadStage>& stages)
 /// stages, after after_step); with `resume` (such a state) the path continues from it, and
 /// ends with the u, plastic states, report and history the uninterrupted one would. The
 /// Newton scheme takes neither (KINSOL's state is not kept): std::invalid_argument.
+/// With `changes` (bonds that break; lbc and adr schemes only), each load step is a fixed
+/// point: balance (and LBC's corrections), then at the balanced u the force, find(), and
+/// when anything is due apply() and balance again, until a balance leaves nothing due, at
+/// most max_rounds balances (then the step fails, saying so). Each balance's residual is
+/// relative to at least the largest reaction norm the path has reached (a body broken apart
+/// carries none: AdrRelaxation::set_load_floor). The history gains the column broken_bonds
+/// (per step); checkpoints hold the changes (save) and resume restores them.
 SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
                             const LoadPathOptions& options, std::vector<double>& u,
                             Progress* progress = nullptr,
                             const std::function<void(const LoadStepRecord&, const std::vector<double>&)>&
                                 after_step = {},
-                            const Checkpoints<LoadPathState>& checkpoints = {}, const LoadPathState* resume = nullptr);
+                            const Checkpoints<LoadPathState>& checkpoints = {}, const LoadPathState* resume = nullptr,
+                            const ModelChanges* changes = nullptr);
 
 }  // namespace perinom

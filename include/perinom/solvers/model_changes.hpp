@@ -40,6 +40,10 @@ struct ModelChanges {
   /// before). Without them a run with changes is not resumed.
   std::function<std::vector<double>()> save;
   std::function<void(const std::vector<double>&)> restore;
+  /// Optional: the stiffness row sums per dof (sum_j |K_kj|) of the model now, once
+  /// stable_step() has been called (apply() keeps them up to date). A load path raises ADR's
+  /// density with them after each change (AdrRelaxation::raise_density).
+  std::function<const std::vector<double>&()> row_sums;
 };
 
 }  // namespace perinom
