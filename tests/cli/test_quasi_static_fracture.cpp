@@ -34,20 +34,37 @@ std::map<std::string, std::vector<double>> columns(const std::string& csv) {
   return out;
 }
 
+/// The bar run with `extra` options: its outcome and, when it ran through, its step table,
+/// with the pulled end's reaction, the broken bonds and the peak step at hand.
+struct BarRun {
+  Outcome o;
+  std::map<std::string, std::vector<double>> t;
+  std::vector<double> R, broken;
+  std::size_t peak = 0;
+};
+
+BarRun run_bar(const ScratchDir& d, const std::string& extra) {
+  BarRun b;
+  b.o = perinom(d, "run " + bar + " --out out " + extra);
+  if (b.o.exit_code != 0) return b;
+  b.t = columns(slurp(d.path / "out" / "load_steps.csv"));
+  b.R = b.t["stages.0.boundary.2.Rx"], b.broken = b.t["broken_bonds"];
+  b.peak = std::size_t(std::max_element(b.R.begin(), b.R.end()) - b.R.begin());
+  return b;
+}
+
 }  // namespace
 
 TEST_CASE("a brittle bar under displacement control carries f_t A, then nothing, failing within one load step",
           "[cli][fracture][load_path]") {
   ScratchDir d;
-  const Outcome o = perinom(d, "run " + bar + " --out out");
-  INFO(o.out << o.err);
-  REQUIRE(o.exit_code == 0);
-  auto t = columns(slurp(d.path / "out" / "load_steps.csv"));
-  const auto& R = t["stages.0.boundary.2.Rx"];
-  const auto& broken = t["broken_bonds"];
+  const BarRun b = run_bar(d, "");
+  INFO(b.o.out << b.o.err);
+  REQUIRE(b.o.exit_code == 0);
+  const auto &R = b.R, &broken = b.broken;
+  const std::size_t peak = b.peak;
   REQUIRE(R.size() == 200);
   REQUIRE(broken.size() == 200);
-  const std::size_t peak = std::size_t(std::max_element(R.begin(), R.end()) - R.begin());
   const double carried = 1.0e6 * 0.02 * 0.01;  // f_t times the section (N)
   // No bond survives a stress above f_t, so the peak cannot pass f_t A by more than rounding;
   // a load step is 0.84% of it (measured 0.40% below).
@@ -61,9 +78,9 @@ TEST_CASE("a brittle bar under displacement control carries f_t A, then nothing,
   for (std::size_t k = peak + 1; k < R.size(); ++k) CHECK(std::abs(R[k]) < 1e-6 * R[peak]);
   for (std::size_t k = peak + 2; k < R.size(); ++k) CHECK(broken[k] == 0.0);
   // Every step balanced (after the break against the load carried before it).
-  for (const double r : t["residual"]) CHECK(r <= 1e-8);
+  for (const double r : b.t.at("residual")) CHECK(r <= 1e-8);
   CHECK(slurp(d.path / "out" / "summary.json").find("\"bonds_broken\": ") != std::string::npos);
-  CHECK(o.out.find("   broken") != std::string::npos);  // the step table's column
+  CHECK(b.o.out.find("   broken") != std::string::npos);  // the step table's column
 }
 
 TEST_CASE("without grips the bar breaks next to its ends, in a cascade of balances within one step",
@@ -74,18 +91,16 @@ TEST_CASE("without grips the bar breaks next to its ends, in a cascade of balanc
   // damaged bands still carry 13% of the peak (the criterion reads each end's stress, which
   // is low on a particle whose family the crack has cut).
   ScratchDir d;
-  const Outcome o = perinom(d, "run " + bar + " --out out --set 'damage.no_fail=[]'");
-  INFO(o.out << o.err);
-  REQUIRE(o.exit_code == 0);
-  auto t = columns(slurp(d.path / "out" / "load_steps.csv"));
-  const auto& R = t["stages.0.boundary.2.Rx"];
-  const auto& broken = t["broken_bonds"];
-  const std::size_t peak = std::size_t(std::max_element(R.begin(), R.end()) - R.begin());
+  const BarRun b = run_bar(d, "--set 'damage.no_fail=[]'");
+  INFO(b.o.out << b.o.err);
+  REQUIRE(b.o.exit_code == 0);
+  const auto &R = b.R, &broken = b.broken;
+  const std::size_t peak = b.peak;
   REQUIRE(peak + 1 < R.size());
   CHECK(R[peak] < 0.99 * 200.0);  // measured 2.1% below f_t A
   CHECK(R[peak] > 0.95 * 200.0);
   CHECK(broken[peak + 1] > 500.0);
-  CHECK(t["rounds"][peak + 1] >= 3.0);
+  CHECK(b.t.at("rounds")[peak + 1] >= 3.0);
   CHECK(broken[peak + 2] == 0.0);  // the fixed point held: nothing left due one step on
   CHECK(R[peak + 1] < 0.2 * R[peak]);
 }
@@ -93,7 +108,7 @@ TEST_CASE("without grips the bar breaks next to its ends, in a cascade of balanc
 TEST_CASE("a load step whose bonds go on breaking past solver.max_rounds stops the run, saying so",
           "[cli][fracture][load_path]") {
   ScratchDir d;
-  const Outcome o = perinom(d, "run " + bar + " --out out --set 'damage.no_fail=[]' --set solver.max_rounds=2");
+  const Outcome o = run_bar(d, "--set 'damage.no_fail=[]' --set solver.max_rounds=2").o;
   INFO(o.out << o.err);
   CHECK(o.exit_code == 3);
   CHECK(o.err.find("load step 118: bonds still breaking after 2 balances (solver.max_rounds)") != std::string::npos);
