@@ -91,6 +91,9 @@ void read_fracture(Fields& top, Scene& s) {
     if (load_path && s.plasticity)
       top.fail("damage", "bond breaking in a drucker_prager body is not built yet (the stress criterion would read "
                          "the elastic stress of grad u)");
+    if (load_path && s.solver.check == "newton")
+      top.fail("damage", "solver.check: newton at a damaged state is not built yet (it would solve the load path "
+                         "again on the intact body); remove solver.check");
     if (load_path && d.every != 1)
       f.fail("every", "applies to Verlet steps; a load path looks for bonds to break after every balance");
     require_breakable_model(top, s, "damage");
