@@ -66,7 +66,8 @@ SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double
   std::printf("perinom: %zu stage(s), %d load steps, %s\n", p.stages.size(), total,
               opt.scheme == LoadPathScheme::lbc ? "loading-balance-correction"
               : opt.scheme == LoadPathScheme::newton ? "Newton with the consistent tangent"
-                                                     : "plain ADR, plastic update in every iteration");
+              : scene.plasticity                     ? "plain ADR, plastic update in every iteration"
+                                                     : "ADR");
   const bool breaking = scene.damage.has_value();
   std::printf("  %5s %5s %6s %10s %6s %8s %8s %8s %10s %8s%s\n", "stage", "step", "factor", "iterations",
               "rounds", "flagged", "yielding", "plastic", "residual", "seconds", breaking ? "   broken" : "");

@@ -298,6 +298,13 @@ int run(const Options& opt) {
   write_json_file(dir + "/summary.json", summary);
 
   if (!final_state_error.empty() && failure.empty()) throw SolveError(final_state_error);
+  // A load step that did not balance (ADR's max_iterations, or solver.max_rounds) leaves the
+  // path not converged, as ADR alone would: exit 1. Divergence and Newton failures: exit 3.
+  if (!failure.empty() && scene.load_path() && !rep.diverged && scene.solver.type != "newton") {
+    std::fprintf(stderr, "perinom: NOT converged: %s; the last balanced state and results in %s\n", failure.c_str(),
+                 dir.c_str());
+    return 1;
+  }
   if (!failure.empty()) throw SolveError(failure + "; results in " + dir);
   if (dynamic)
     std::printf("perinom: %lld steps to t = %.6e s (stable step %.3e s); results in %s\n",

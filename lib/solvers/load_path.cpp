@@ -176,6 +176,7 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
         r.load_factor = static_cast<double>(step) / stage.steps;
         adr->set_load_step(++done, total_steps);
         SolveReport balance;
+        std::vector<double> balanced;  // u after this step's last balance that converged
         const std::function<void()> commit_each = [plastic] { plastic->commit_trial(); };
         for (;;) {
           bool ok = false;
@@ -192,10 +193,14 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
           ++r.rounds;
           r.iterations = balance.iterations;
           r.residual = balance.residual;
-          if (!ok)
+          if (!ok) {
+            // The state left is the last balanced one: this step's previous round, or the last step.
+            u = r.rounds > 1 ? balanced : u_prev;
             throw SolveError(where(stage, int(k), step) + ": the balance did not converge in " +
                              std::to_string(balance.iterations) + " ADR iterations (residual " +
                              std::to_string(balance.residual) + "); raise solver.max_iterations or loosen the tolerance");
+          }
+          if (changes || plastic) balanced = u;
           if (opt.scheme == LoadPathScheme::lbc && plastic) {
             const std::size_t flagged = plastic->flag_violations(opt.yield_tolerance);
             r.newly_flagged += flagged;

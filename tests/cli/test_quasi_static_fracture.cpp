@@ -110,7 +110,7 @@ TEST_CASE("a load step whose bonds go on breaking past solver.max_rounds stops t
   ScratchDir d;
   const Outcome o = run_bar(d, "--set 'damage.no_fail=[]' --set solver.max_rounds=2").o;
   INFO(o.out << o.err);
-  CHECK(o.exit_code == 3);
+  CHECK(o.exit_code == 1);  // not converged, as when a balance runs out of iterations
   CHECK(o.err.find("load step 118: bonds still breaking after 2 balances (solver.max_rounds)") != std::string::npos);
   const std::string summary = slurp(d.path / "out" / "summary.json");
   CHECK(summary.find("\"status\": \"not_converged\"") != std::string::npos);
