@@ -91,16 +91,16 @@ TEST_CASE("damage needs Verlet or a load path, and the classical formulation", "
                          "solved by adr or lbc), not with solver.type adr without stages"});
   }
   SECTION("a load path checks after every balance") {
-    const std::string s = with(slurp(PERINOM_SOURCE_DIR "/tests/data/brittle_bar.yaml"), "  f_t: 1.0e6\n", "  f_t: 1.0e6\n  every: 2\n");
+    const std::string s = with(slurp(PERINOM_SOURCE_DIR "/examples/brittle_bar.yaml"), "  f_t: 1.0e6\n", "  f_t: 1.0e6\n  every: 2\n");
     require_rejected(s, {"damage.every: applies to Verlet steps; a load path looks for bonds to break after every balance"});
   }
   SECTION("the Newton check, which would solve the intact body") {
-    const std::string s = with(slurp(PERINOM_SOURCE_DIR "/tests/data/brittle_bar.yaml"), "solver: {type: adr,",
+    const std::string s = with(slurp(PERINOM_SOURCE_DIR "/examples/brittle_bar.yaml"), "solver: {type: adr,",
                                "solver: {type: adr, check: newton,");
     require_rejected(s, {"damage: solver.check: newton at a damaged state is not built yet"});
   }
   SECTION("a plastic body") {
-    const std::string s = with(with(slurp(PERINOM_SOURCE_DIR "/tests/data/brittle_bar.yaml"), "material: {type: linear_elastic,",
+    const std::string s = with(with(slurp(PERINOM_SOURCE_DIR "/examples/brittle_bar.yaml"), "material: {type: linear_elastic,",
                                     "material: {type: drucker_prager, friction_angle: 30.0, cohesion: 1.0e6,"),
                                "plane: stress}", "plane: strain}");
     require_rejected(s, {"damage: bond breaking in a drucker_prager body is not built yet"});

@@ -15,7 +15,7 @@ using namespace cli_test;
 
 namespace {
 
-const std::string bar = "'" PERINOM_SOURCE_DIR "/tests/data/brittle_bar.yaml'";
+const std::string bar = "'" PERINOM_SOURCE_DIR "/examples/brittle_bar.yaml'";
 
 /// load_steps.csv as columns by name.
 std::map<std::string, std::vector<double>> columns(const std::string& csv) {

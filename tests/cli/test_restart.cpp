@@ -158,7 +158,7 @@ TEST_CASE("a load path that breaks bonds resumed after the break ends bit for bi
   // and 165; resumed at 120, the restored bonds, ADR's density after them, the load the
   // residual is measured against and the step count must all be the run's.
   ScratchDir d;
-  const std::string scene = "'" PERINOM_SOURCE_DIR "/tests/data/brittle_bar.yaml' --set 'damage.no_fail=[]'";
+  const std::string scene = "'" PERINOM_SOURCE_DIR "/examples/brittle_bar.yaml' --set 'damage.no_fail=[]'";
   require_ok(perinom(d, "run " + scene + " --out reference"));
   require_ok(perinom(d, "run " + scene + " --out written --set output.checkpoint_every=120"));
   require_same_results(d.path / "reference", d.path / "written");
