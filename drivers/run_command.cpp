@@ -20,6 +20,7 @@
 #include "perinom/core/timer.hpp"
 #include "perinom/solvers/newton.hpp"
 #include "difference.hpp"
+#include "damaged_newton_check.hpp"
 #include "load_path_run.hpp"
 #include "memory_estimate.hpp"
 #include "output_folder.hpp"
@@ -281,7 +282,9 @@ int run(const Options& opt) {
   }
   if (scene.solver.check == "newton" && failure.empty()) {
     timer.start("newton check");
-    summary["check"] = scene.load_path() ? load_path_newton_check(p, u, probe_history) : newton_check(p, u);
+    summary["check"] = !scene.load_path() ? newton_check(p, u)
+                       : scene.damage  ? damaged_newton_check(p, u)
+                                       : load_path_newton_check(p, u, probe_history);
     timer.start("output");
   }
   if (const ModelHistory* history = p.physics().history()) summary["plasticity"] = plastic_summary(*history);

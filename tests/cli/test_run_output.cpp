@@ -37,6 +37,7 @@ int run_perinom(const fs::path& dir, const std::string& args) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+using test_support::json_number;
 using test_support::slurp;
 
 fs::path scratch(const std::string& name) {
@@ -105,13 +106,6 @@ TEST_CASE("a solve that blows up exits 3 and writes its last good state and summ
 }
 
 namespace {
-
-/// The number after "key": in a JSON text (the first occurrence).
-double json_number(const std::string& json, const std::string& key) {
-  const auto at = json.find("\"" + key + "\": ");
-  REQUIRE(at != std::string::npos);
-  return std::stod(json.substr(at + key.size() + 4));
-}
 
 /// Whether a CSV or JSON text holds a non-finite number: a word nan, inf or infinity (any
 /// case, any sign) outside double-quoted strings (a JSON message may say "NaN or Inf").

@@ -18,6 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using test_support::json_number;
 using test_support::slurp;
 
 struct Run {
@@ -54,12 +55,6 @@ std::vector<double> json_array(const std::string& text, const std::string& key) 
   std::stringstream s(text.substr(at, end - at));
   for (std::string item; std::getline(s, item, ',');) out.push_back(std::stod(item));
   return out;
-}
-
-/// The number that follows "key": in text (NaN if absent).
-double json_number(const std::string& text, const std::string& key) {
-  const auto at = text.find("\"" + key + "\": ");
-  return at == std::string::npos ? NAN : std::stod(text.substr(at + key.size() + 4));
 }
 
 /// A 20 x 10 mm plane-stress plate with no support, pulled by 1 MPa on the left and the right.

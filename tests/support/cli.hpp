@@ -89,6 +89,7 @@ inline int line_of(const std::string& scene, const std::string& text) {
   return 1 + static_cast<int>(std::count(scene.begin(), scene.begin() + at, '\n'));
 }
 
+using test_support::json_number;
 using test_support::slurp;
 
 struct Outcome {

@@ -1,0 +1,19 @@
+#pragma once
+// solver.check: newton for a load path whose bonds broke (issue 18): Newton solves the final
+// loads again on the model as it ended, broken bonds and detached particles included.
+#include <vector>
+
+#include "perinom/io/json_writer.hpp"
+#include "perinom/scene/problem.hpp"
+
+namespace perinom::cli {
+
+/// The equilibrium of the broken body at the last stage's full load, by Newton (KINSOL + the
+/// assembled tangent of the refreshed rows), one load step per stage (the body is linear
+/// elastic: the scene refuses the check with drucker_prager), against the load path's u. The
+/// detached particles are held at zero in Newton's solve and left out of the comparison (they
+/// carry nothing, and their displacement is where the path left them). A body that broke into
+/// a piece without supports has a singular tangent: newton_error then says so.
+io::Json damaged_newton_check(Problem& p, const std::vector<double>& u);
+
+}  // namespace perinom::cli
