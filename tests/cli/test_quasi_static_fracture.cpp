@@ -1,11 +1,14 @@
 // Bonds breaking on a load path (issue 18): each load step a fixed point of balance and
 // breaking. A brittle bar under displacement control carries f_t times its section, fails
 // within one load step and carries nothing after it; without grips its ends break first, in
-// a cascade of balances within the step; a cap on the balances stops the run, saying so.
+// a cascade of balances within the step; a plastic bar breaks when its plastic stress
+// reaches f_t; a cap on the balances stops the run, saying so; the Newton check solves a
+// broken beam at its final damage state.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -103,6 +106,41 @@ TEST_CASE("without grips the bar breaks next to its ends, in a cascade of balanc
   CHECK(b.t.at("rounds")[peak + 1] >= 3.0);
   CHECK(broken[peak + 2] == 0.0);  // the fixed point held: nothing left due one step on
   CHECK(R[peak + 1] < 0.2 * R[peak]);
+}
+
+TEST_CASE("a Drucker-Prager bar yields, hardens and breaks when its plastic stress reaches f_t",
+          "[cli][fracture][load_path][plasticity]") {
+  // The bar in plane strain with Drucker-Prager (phi = 30 deg, c = 1.5 MPa, m0 = 0.2, h =
+  // 20000): it yields near 0.65 MPa, hardens, and its bonds break when the stress of the
+  // plastic state reaches f_t = 1 MPa, at a larger stretch than an elastic bar's. A criterion
+  // that read the elastic stress of grad u would break it near 174 N (step 60).
+  ScratchDir d;
+  const std::string scene = with(with(with(slurp(PERINOM_SOURCE_DIR "/examples/brittle_bar.yaml"),
+                                     "material: {type: linear_elastic, E: 27.0e9, nu: 0.18, density: 2400.0, plane: stress}",
+                                     "material: {type: drucker_prager, E: 27.0e9, nu: 0.18, density: 2400.0, plane: strain, "
+                                     "friction_angle: 30.0, cohesion: 1.5e6, m0: 0.2, h: 20000.0}"),
+                                "solver: {type: adr,", "solver: {type: lbc,"),
+                           "x: 6.0e-6", "x: 1.2e-5");
+  std::ofstream(d.path / "dp_bar.yaml") << scene;
+  const Outcome o = perinom(d, "run dp_bar.yaml --out out");
+  INFO(o.out << o.err);
+  REQUIRE(o.exit_code == 0);
+  const auto t = columns(slurp(d.path / "out" / "load_steps.csv"));
+  const std::vector<double>&R = t.at("stages.0.boundary.2.Rx"), &plastic = t.at("plastic"), &broken = t.at("broken_bonds");
+  const auto peak = std::size_t(std::max_element(R.begin(), R.end()) - R.begin());
+  REQUIRE(peak + 1 < R.size());
+  const double carried = 1.0e6 * 0.02 * 0.01;
+  CHECK(R[peak] <= carried * (1.0 + 1e-9));
+  CHECK(R[peak] >= 0.99 * carried);  // measured 0.61% below
+  CHECK(plastic[peak] > 0.0);        // it yielded before it broke
+  // Elastic until yield: the first steps' slope; an elastic bar would carry f_t A at step
+  // carried / slope (60); the plastic one breaks later (75 measured).
+  const double slope = R[9] / 10.0;
+  CHECK(double(peak + 1) > 1.15 * carried / slope);
+  for (std::size_t k = 0; k <= peak; ++k) CHECK(broken[k] == 0.0);
+  CHECK(broken[peak + 1] > 4000.0);
+  for (std::size_t k = peak + 1; k < R.size(); ++k) CHECK(std::abs(R[k]) < 1e-6 * R[peak]);
+  for (const double r : t.at("residual")) CHECK(r <= 1e-8);
 }
 
 TEST_CASE("a load step whose bonds go on breaking past solver.max_rounds stops the run, saying so",
