@@ -45,4 +45,16 @@ std::vector<double> damage(const BondGraph& graph, const std::vector<double>& vo
   return d;
 }
 
+std::vector<double> first_break_event(const BondGraph& graph) {
+  std::vector<double> e(graph.rows(), 0.0);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < graph.rows(); ++i) {
+    std::uint32_t first = 0;
+    for (Offset k = graph.begin(i); k < graph.end(i); ++k)
+      if (!graph.alive(k) && (first == 0 || graph.event(k) < first)) first = graph.event(k);
+    e[i] = first;
+  }
+  return e;
+}
+
 }  // namespace perinom

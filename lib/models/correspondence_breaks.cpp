@@ -27,6 +27,7 @@ BondBreaks CorrespondenceModel::break_bonds(const std::vector<std::pair<Particle
   BondBreaks out;
   out.rows = graph_->rows_touched(bonds);
   auto change = [&] {
+    graph_->begin_event();
     for (const auto& [i, j] : bonds) out.broken += graph_->break_bond(i, j) ? 1 : 0;
     G_.refresh_rows(out.rows);
   };

@@ -93,8 +93,12 @@ std::vector<OutputField> CorrespondenceModel::output_fields(const double* u, boo
     out.push_back({"surface", 1, std::vector<double>(surface_.on_surface.begin(), surface_.on_surface.end())});
   }
   // Broken bonds: the volume-weighted share of each family that is gone (seed 002 eq. 88),
-  // and the largest principal stress (what the stress criterion reads).
-  if (fracture_fields_ || graph_->broken() > 0) out.push_back({"damage", 1, damage(*graph_, volume_)});
+  // the break event a particle first lost a bond in (the order a crack grew in), and the
+  // largest principal stress (what the stress criterion reads).
+  if (fracture_fields_ || graph_->broken() > 0) {
+    out.push_back({"damage", 1, damage(*graph_, volume_)});
+    out.push_back({"break_event", 1, first_break_event(*graph_)});
+  }
   if (fracture_fields_) {
     OutputField s1{"max_principal_stress", 1, std::vector<double>(n)};
     for (std::size_t i = 0; i < n; ++i) s1.values[i] = max_principal_stress(sigma.data() + i * 9);

@@ -49,7 +49,9 @@ bool BondGraph::break_bond(ParticleId i, ParticleId j) {
   for (const auto& [a, b] : {std::pair{i, j}, std::pair{j, i}}) {
     const Offset k = find(static_cast<std::size_t>(a), b);
     if (k >= 0 && alive_[k]) {
+      if (event_.empty()) event_.assign(alive_.size(), 0);  // an intact graph keeps none
       alive_[k] = 0;
+      event_[k] = events_;
       dual_alive_[dual_entry(k)] = 0;
       ++broken_;
       changed = true;
@@ -73,7 +75,7 @@ std::vector<ParticleId> BondGraph::rows_touched(const std::vector<std::pair<Part
 std::size_t BondGraph::memory_bytes() const {
   return perinom::memory_bytes(families_) + dual_offsets_.size() * sizeof(Offset) +
          dual_cols_.size() * sizeof(ParticleId) + slot_.size() * sizeof(std::uint32_t) + alive_.size() +
-         dual_alive_.size();
+         dual_alive_.size() + event_.size() * sizeof(std::uint32_t);
 }
 
 }  // namespace perinom

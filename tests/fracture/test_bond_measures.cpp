@@ -100,6 +100,37 @@ TEST_CASE("bond stretch, bond stress, principal stress and damage are the bond's
   CHECK(dmg[0] == 0.0);
 }
 
+TEST_CASE("each break event stamps its bonds, and a particle reports the first event it lost a bond in",
+          "[fracture]") {
+  const PointCloud c = test::lattice(2, 6, 0.0);
+  BondGraph g(radius_families(c, 1.515));
+  CHECK(g.events() == 0);
+  CHECK(g.memory_bytes() == BondGraph(radius_families(c, 1.515)).memory_bytes());  // intact: no stamps kept
+  // Event 1 breaks (14, 15); event 2 breaks (14, 20) and (7, 8); (7, 8) again in event 3 is
+  // already dead and keeps its stamp.
+  g.begin_event();
+  REQUIRE(g.break_bond(14, 15));
+  g.begin_event();
+  REQUIRE(g.break_bond(14, 20));
+  REQUIRE(g.break_bond(8, 7));
+  g.begin_event();
+  CHECK_FALSE(g.break_bond(7, 8));
+  CHECK(g.events() == 3);
+  CHECK(g.event(g.find(14, 15)) == 1);
+  CHECK(g.event(g.find(15, 14)) == 1);
+  CHECK(g.event(g.find(20, 14)) == 2);
+  CHECK(g.event(g.find(7, 8)) == 2);
+  CHECK(g.event(g.find(14, 13)) == 0);  // alive
+  const std::vector<double> first = first_break_event(g);
+  CHECK(first[14] == 1.0);  // lost (14, 15) first, then (14, 20)
+  CHECK(first[15] == 1.0);
+  CHECK(first[20] == 2.0);
+  CHECK(first[7] == 2.0);
+  CHECK(first[8] == 2.0);
+  CHECK(first[0] == 0.0);
+  CHECK(std::count(first.begin(), first.end(), 0.0) == std::ptrdiff_t(c.size()) - 5);
+}
+
 TEST_CASE("criteria break strictly above their thresholds, and the instability criterion arms once", "[fracture]") {
   const PointCloud c = test::lattice(2, 5, 0.0);
   BondGraph g(radius_families(c, 1.515));

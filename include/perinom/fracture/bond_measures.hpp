@@ -95,4 +95,8 @@ void bond_stresses(const BondGraph& graph, const std::vector<double>& sigma1, st
 /// eq. 88, volume-weighted); 0 for an empty family.
 std::vector<double> damage(const BondGraph& graph, const std::vector<double>& volume);
 
+/// The first break event of each particle (BondGraph::event): the smallest event among the
+/// dead bonds of row i, 0 when none died. Coloured by it, a crack shows the order it grew in.
+std::vector<double> first_break_event(const BondGraph& graph);
+
 }  // namespace perinom

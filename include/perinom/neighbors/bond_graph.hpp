@@ -68,8 +68,16 @@ class BondGraph {
   /// the columns of row j in the same order. Only for symmetric graphs.
   Offset reverse(Offset k) const { return begin(families_.neighbors[k]) + slot_[k]; }
 
-  /// Breaks (i, j) and (j, i), where they exist and are alive; true when a bond died.
+  /// Breaks (i, j) and (j, i), where they exist and are alive; true when a bond died. The
+  /// bond is stamped with the current break event (below).
   bool break_bond(ParticleId i, ParticleId j);
+  /// Starts the next break event: the bonds broken from now on carry its number (1, 2, ...),
+  /// so that the order in which a crack grew can be read back (a model's break_bonds call is
+  /// one event: the precracks, then each breaking round of a run).
+  void begin_event() { ++events_; }
+  std::uint32_t events() const { return events_; }
+  /// The event bond k died in, 0 while it is alive (or before begin_event was ever called).
+  std::uint32_t event(Offset k) const { return event_.empty() ? 0 : event_[k]; }
   /// The rows whose families a set of breaks changes (sorted, unique): i for a live (i, j),
   /// j for a live (j, i). Call it before the breaks, or pass what break_bond reported.
   std::vector<ParticleId> rows_touched(const std::vector<std::pair<ParticleId, ParticleId>>& breaks) const;
@@ -82,6 +90,8 @@ class BondGraph {
   std::vector<ParticleId> dual_cols_;
   std::vector<std::uint32_t> slot_;        // bond k -> its place in the dual row of its column
   std::vector<std::uint8_t> alive_, dual_alive_;  // per bond, in row and in dual order
+  std::vector<std::uint32_t> event_;  // per bond: the event it died in (empty until a break)
+  std::uint32_t events_ = 0;
   std::size_t broken_ = 0;
   bool symmetric_ = false;
 };
