@@ -182,3 +182,36 @@ TEST_CASE("solver.check: newton solves the broken notched beam again at its fina
   CHECK(json_number(summary, "stress_relative_l2") < 1e-4);
   CHECK(o.out.find("perinom: Newton check at the final damage state") != std::string::npos);
 }
+
+TEST_CASE("smoke: the four-point beam with two flaws, coarse, cracks first at the lower flaw's tip and softens",
+          "[cli][fracture][load_path]") {
+  // examples/four_point_beam.yaml at dx = 6.25 mm (26 x 12 particles) in 200 load steps (the
+  // load strips lowered to the coarser top row): the first bond to break is within two
+  // spacings of the lower flaw's tip T1 = (80, 21) mm (measured: at (84.4, 28.1), step 49),
+  // not at a support or under a load; the load passes a peak and falls; every step balanced.
+  ScratchDir d;
+  const Outcome o = perinom(d, "run '" PERINOM_SOURCE_DIR "/examples/four_point_beam.yaml' --out out "
+                               "--set discretization.dx=0.00625 --set 'stages.0.boundary.2.region.box.min=[0.056, 0.07]' "
+                               "--set 'stages.0.boundary.3.region.box.min=[0.1015, 0.07]' --set stages.0.steps=200 "
+                               "--set output.csv=true --set 'output.vtk_steps=[200]'");
+  INFO(o.out << o.err);
+  REQUIRE(o.exit_code == 0);
+  const auto t = columns(slurp(d.path / "out" / "load_steps.csv"));
+  std::vector<double> P;
+  for (std::size_t k = 0; k < t.at("step").size(); ++k)
+    P.push_back(-(t.at("stages.0.boundary.2.Ry")[k] + t.at("stages.0.boundary.3.Ry")[k]));
+  REQUIRE(P.size() == 200);
+  const auto peak = std::size_t(std::max_element(P.begin(), P.end()) - P.begin());
+  CHECK(peak > 0);
+  CHECK(peak + 1 < P.size());
+  CHECK(P.back() < 0.9 * P[peak]);
+  for (const double r : t.at("residual")) CHECK(r <= 1e-6);
+  const auto cloud = columns(slurp(d.path / "out" / "four_point_beam_000000.csv"));
+  const std::vector<double>&x = cloud.at("x"), &y = cloud.at("y"), &event = cloud.at("break_event");
+  double first = 0.0;  // the first event after the precracks' (event 1)
+  for (const double e : event)
+    if (e > 1.0 && (first == 0.0 || e < first)) first = e;
+  REQUIRE(first > 1.0);
+  for (std::size_t i = 0; i < event.size(); ++i)
+    if (event[i] == first) CHECK(std::hypot(x[i] - 0.080, y[i] - 0.021) < 2.0 * 0.00625);
+}
