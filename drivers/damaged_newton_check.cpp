@@ -52,17 +52,9 @@ io::Json damaged_newton_check(Problem& p, const std::vector<double>& u) {
   for (const std::int64_t k : held) ua[k] = un[k] = 0.0;
   const std::vector<double> s = model.stress_measure(ua.data()), sn = model.stress_measure(un.data());
   const Difference du = difference(ua, un), ds = difference(s, sn);
-  io::Json j = io::Json::object();
+  io::Json j = check_json(du, ds, rep, seconds);
   j["at"] = "final damage state";
   j["detached_held"] = static_cast<long long>(detached.size());
-  j["displacement_relative_l2"] = du.relative_l2;
-  j["displacement_relative_max"] = du.relative_max;
-  j["stress_relative_l2"] = ds.relative_l2;
-  j["stress_relative_max"] = ds.relative_max;
-  j["newton_iterations"] = static_cast<long long>(rep.iterations);
-  j["newton_converged"] = rep.converged;
-  j["newton_seconds"] = seconds;
-  if (!rep.failure.empty()) j["newton_error"] = rep.failure;
   std::printf("perinom: Newton check at the final damage state (%zu bonds broken, %zu detached particles held): "
               "displacement differs by %.3e, stress by %.3e (relative L2); Newton: %lld iterations, %.3f s%s%s\n",
               p.as<CorrespondenceModel>().G().graph().broken(), detached.size(), du.relative_l2, ds.relative_l2,

@@ -128,16 +128,8 @@ io::Json load_path_newton_check(Problem& p, const std::vector<double>& u, const 
     }
     if (bmax > 0.0) probes_max = std::max(probes_max, dmax / bmax);
   }
-  io::Json j = io::Json::object();
-  j["displacement_relative_l2"] = du.relative_l2;
-  j["displacement_relative_max"] = du.relative_max;
-  j["stress_relative_l2"] = ds.relative_l2;
-  j["stress_relative_max"] = ds.relative_max;
+  io::Json j = check_json(du, ds, rep, seconds);
   j["probe_histories_relative_max"] = probes_max;
-  j["newton_iterations"] = static_cast<long long>(rep.iterations);
-  j["newton_converged"] = rep.converged;
-  j["newton_seconds"] = seconds;
-  if (!rep.failure.empty()) j["newton_error"] = rep.failure;
   std::printf("perinom: Newton check: displacement differs by %.3e, stress by %.3e (relative L2), probe "
               "histories by %.3e (relative max over steps); Newton: %lld iterations, %.3f s\n",
               du.relative_l2, ds.relative_l2, probes_max, static_cast<long long>(rep.iterations), seconds);

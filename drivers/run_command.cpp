@@ -97,16 +97,7 @@ Json newton_check(Problem& p, const std::vector<double>& u) {
   // The model's stress measure (a plate's: its bending moments).
   const std::vector<double> s = p.physics().stress_measure(u.data()), sn = p.physics().stress_measure(un.data());
   const Difference du = difference(u, un), ds = difference(s, sn);
-  Json j = Json::object();
-  j["displacement_relative_l2"] = du.relative_l2;
-  j["displacement_relative_max"] = du.relative_max;
-  j["stress_relative_l2"] = ds.relative_l2;
-  j["stress_relative_max"] = ds.relative_max;
-  j["newton_iterations"] = static_cast<long long>(rep.iterations);
-  j["newton_converged"] = rep.converged;
-  j["newton_residual"] = rep.residual;
-  j["newton_seconds"] = seconds;
-  if (!rep.failure.empty()) j["newton_error"] = rep.failure;
+  Json j = check_json(du, ds, rep, seconds);
   std::printf("perinom: Newton check: displacement differs by %.3e, stress by %.3e (relative L2); "
               "Newton: %lld iterations, %.3f s\n", du.relative_l2, ds.relative_l2, static_cast<long long>(rep.iterations), seconds);
   return j;
