@@ -161,7 +161,7 @@ TEST_CASE("solver.check: newton solves the broken notched beam again at its fina
   // solves the final loads on the broken body (one step: it is linear elastic) with the
   // assembled tangent of the refreshed rows; an intact tangent would carry 19% more load.
   ScratchDir d;
-  const Outcome o = perinom(d, "run '" PERINOM_SOURCE_DIR "/verification/fracture/notched_beam_2d.yaml' --out out "
+  const Outcome o = perinom(d, "run '" PERINOM_SOURCE_DIR "/examples/notched_beam.yaml' --out out "
                                "--set discretization.dx=0.005 --set stages.0.steps=40 "
                                "--set stages.0.boundary.2.displacement.y=-2.4e-5 --set solver.check=newton");
   INFO(o.out << o.err);
