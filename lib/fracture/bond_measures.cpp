@@ -50,8 +50,10 @@ std::vector<double> first_break_event(const BondGraph& graph) {
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::size_t i = 0; i < graph.rows(); ++i) {
     std::uint32_t first = 0;
-    for (Offset k = graph.begin(i); k < graph.end(i); ++k)
-      if (!graph.alive(k) && (first == 0 || graph.event(k) < first)) first = graph.event(k);
+    for (Offset k = graph.begin(i); k < graph.end(i); ++k) {
+      const std::uint32_t e = graph.event(k);  // 0: alive, or cut at build time
+      if (e > 0 && (first == 0 || e < first)) first = e;
+    }
     e[i] = first;
   }
   return e;

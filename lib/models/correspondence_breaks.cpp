@@ -65,6 +65,12 @@ double CorrespondenceModel::row_share(std::size_t i, const double* u, double sig
   return share;
 }
 
+BondBreaks CorrespondenceModel::cut_bonds(const std::vector<std::pair<ParticleId, ParticleId>>& bonds) {
+  BondBreaks out = break_bonds(bonds);
+  graph_->settle_events();
+  return out;
+}
+
 BondBreaks CorrespondenceModel::break_bonds(const std::vector<std::pair<ParticleId, ParticleId>>& bonds,
                                             const double* u, double* f) {
   const bool by_rows = formulation_ == Formulation::classical && order_ == 1 &&

@@ -259,7 +259,7 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   if (!s.precracks.empty()) {
     const std::vector<std::pair<ParticleId, ParticleId>> cut = bonds_crossing(p.cloud, families, s.precracks);
     if (cut.empty()) throw InputError(s.source + ": precracks: cut no bond (do they cross the body between particles?)");
-    model->break_bonds(cut);
+    model->cut_bonds(cut);
   }
   // The loads see the trace's facets (the consistent formulation) or the body's own.
   BoundaryData data{model->trace().empty() ? &body.facets : &model->trace().facets(), &p.groups, &model->trace()};

@@ -129,6 +129,20 @@ TEST_CASE("each break event stamps its bonds, and a particle reports the first e
   CHECK(first[8] == 2.0);
   CHECK(first[0] == 0.0);
   CHECK(std::count(first.begin(), first.end(), 0.0) == std::ptrdiff_t(c.size()) - 5);
+  // Settled (the cuts are the body as built): no particle reports them, and the next event
+  // is 1 again; a particle cut at build time reports the first event that breaks more of it.
+  g.settle_events();
+  CHECK(g.events() == 0);
+  CHECK(g.event(g.find(14, 15)) == 0);
+  CHECK_FALSE(g.alive(g.find(14, 15)));
+  const std::vector<double> none = first_break_event(g);
+  CHECK(std::count(none.begin(), none.end(), 0.0) == std::ptrdiff_t(c.size()));
+  g.begin_event();
+  REQUIRE(g.break_bond(14, 13));
+  const std::vector<double> later = first_break_event(g);
+  CHECK(later[14] == 1.0);
+  CHECK(later[13] == 1.0);
+  CHECK(later[15] == 0.0);
 }
 
 TEST_CASE("criteria break strictly above their thresholds, and the instability criterion arms once", "[fracture]") {

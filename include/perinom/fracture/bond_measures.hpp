@@ -96,7 +96,8 @@ void bond_stresses(const BondGraph& graph, const std::vector<double>& sigma1, st
 std::vector<double> damage(const BondGraph& graph, const std::vector<double>& volume);
 
 /// The first break event of each particle (BondGraph::event): the smallest event among the
-/// dead bonds of row i, 0 when none died. Coloured by it, a crack shows the order it grew in.
+/// bonds of row i that a run broke, 0 when none (bonds cut at build time have event 0). Coloured
+/// by it, a crack shows the order it grew in, from the precracks' tips too.
 std::vector<double> first_break_event(const BondGraph& graph);
 
 }  // namespace perinom

@@ -179,6 +179,10 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// costs its rows, not another force and two energies. Otherwise both are evaluated anew.
   /// last_gradient() stays grad u at u.
   BondBreaks break_bonds(const std::vector<std::pair<ParticleId, ParticleId>>& bonds, const double* u, double* f);
+  /// Cuts bonds at build time (precracks): break_bonds, and the cuts are then the body as built,
+  /// not break events of a run (BondGraph::settle_events; the VTK field break_event counts only
+  /// the run's).
+  BondBreaks cut_bonds(const std::vector<std::pair<ParticleId, ParticleId>>& bonds);
 
   const NonlocalOperator& G() const { return G_; }
   /// 1 or 2: the order of the fit G comes from (CorrespondenceOptions::operator_order).

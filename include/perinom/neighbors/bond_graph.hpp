@@ -2,6 +2,7 @@
 /// @file The bond graph: the families in CSR form, their dual support with the map from each
 /// bond to its dual entry, and which bonds are alive. The one owner of the bond pattern: the
 /// operators and stabilizations read it, and a broken bond is recorded here alone.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -73,11 +74,17 @@ class BondGraph {
   bool break_bond(ParticleId i, ParticleId j);
   /// Starts the next break event: the bonds broken from now on carry its number (1, 2, ...),
   /// so that the order in which a crack grew can be read back (a model's break_bonds call is
-  /// one event: the precracks, then each breaking round of a run).
+  /// one event: each breaking round of a run).
   void begin_event() { ++events_; }
   std::uint32_t events() const { return events_; }
-  /// The event bond k died in, 0 while it is alive (or before begin_event was ever called).
+  /// The event bond k died in; 0 while it is alive, and for the body's initial cuts.
   std::uint32_t event(Offset k) const { return event_.empty() ? 0 : event_[k]; }
+  /// The bonds broken so far are the body as built (precracks): their event becomes 0, and the
+  /// events start again from 1.
+  void settle_events() {
+    std::fill(event_.begin(), event_.end(), 0u);
+    events_ = 0;
+  }
   /// The rows whose families a set of breaks changes (sorted, unique): i for a live (i, j),
   /// j for a live (j, i). Call it before the breaks, or pass what break_bond reported.
   std::vector<ParticleId> rows_touched(const std::vector<std::pair<ParticleId, ParticleId>>& breaks) const;
