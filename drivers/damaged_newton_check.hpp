@@ -11,8 +11,8 @@ namespace perinom::cli {
 /// The equilibrium of the broken body at the last stage's full load, by Newton (KINSOL + the
 /// assembled tangent of the refreshed rows), one load step per stage (the body is linear
 /// elastic: the scene refuses the check with drucker_prager), against the load path's u. The
-/// detached particles are held at zero in Newton's solve and left out of the comparison (they
-/// carry nothing, and their displacement is where the path left them). A body that broke into
+/// detached particles carry nothing, so their rows are empty: Newton holds them where the path
+/// left them (their live bonds still enter their neighbours' gradients). A body that broke into
 /// a piece without supports has a singular tangent: newton_error then says so.
 io::Json damaged_newton_check(Problem& p, const std::vector<double>& u);
 
