@@ -8,6 +8,7 @@
 #include "perinom/core/timer.hpp"
 #include "perinom/io/csv_writer.hpp"
 #include "difference.hpp"
+#include "run_output.hpp"
 #include "snapshot.hpp"
 #include "terminal_progress.hpp"
 
@@ -16,6 +17,9 @@ namespace {
 
 constexpr int kProbeColumns = 5;  // value, von_mises, mean_stress, equivalent_strain, eq_plastic_strain
 constexpr int kStepColumns = 3;   // stage, step, load_factor
+// A long path's tables are rewritten after its first step and then at most this often
+// (and at the end of the run), so a killed run leaves them a few seconds behind at worst.
+constexpr double kTableSeconds = 5.0;
 
 std::vector<const BoundProbe*> point_probes(const Problem& p) {
   std::vector<const BoundProbe*> out;
@@ -72,9 +76,15 @@ SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double
   std::printf("  %5s %5s %6s %10s %6s %8s %8s %8s %10s %8s%s\n", "stage", "step", "factor", "iterations",
               "rounds", "flagged", "yielding", "plastic", "residual", "seconds", breaking ? "   broken" : "");
   std::int64_t done = resume ? steps_done(*resume, p.stages) : 0;  // load steps over all stages
+  double tables_written = -kTableSeconds;
   auto after_step = [&](const LoadStepRecord& r, const std::vector<double>& u) {
     ++done;
     probes.record(p, r, u);
+    if (r.rows && wall_seconds() - tables_written >= kTableSeconds) {
+      write_history(dir + "/load_steps.csv", *r.rows);  // a resumed path's rows include the checkpoint's
+      probes.write(p, dir);
+      tables_written = wall_seconds();
+    }
     std::printf("  %5d %5d %6.3f %10lld %6d %8zu %8zu %8zu %10.3e %8.3f", r.stage, r.step, r.load_factor,
                 static_cast<long long>(r.iterations), r.rounds, r.newly_flagged, r.yielding, r.plastic,
                 r.residual, r.seconds);

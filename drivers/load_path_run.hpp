@@ -22,7 +22,9 @@ struct ProbeHistory {
 
 /// Solves the load path into u with a per-step line on stdout, VTK snapshots after the
 /// steps output.vtk_steps names (or every output.vtk_every steps; last_snapshot is the last
-/// step written), and the probe histories. report.history has a row per load step.
+/// step written), and the probe histories. report.history has a row per load step; it and
+/// the probe histories are written to dir after the first step and then every few seconds,
+/// so a killed run leaves them (the caller writes them whole at the end).
 /// Checkpoints and a resumed state as solve_load_path takes them.
 SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double>& u, io::PvdSeries& series,
                           ProbeHistory& probes, std::int64_t& last_snapshot,

@@ -123,6 +123,7 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
     }
     if (changes) rep.history.values.push_back(double(r.broken));
     rep.residual = r.residual;
+    r.rows = &rep.history;
     if (after_step) after_step(r, u);
   };
 

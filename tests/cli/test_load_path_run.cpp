@@ -1,5 +1,6 @@
 // `perinom run` on a plastic scene: the step table's files, the probe histories, the plastic
-// VTK fields and CSV snapshots, and the Newton check of a load path.
+// VTK fields and CSV snapshots, the Newton check of a load path, and the table a killed
+// path leaves.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -9,6 +10,11 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
 #include "../support/slurp.hpp"
 
 namespace fs = std::filesystem;
@@ -81,6 +87,43 @@ TEST_CASE("finite rotation says how its pressures act, and its Newton check foll
     CHECK((out.find("pressures follow the deformed surface") != std::string::npos) == follower);
     CHECK((out.find("tractions and pressures stay nominal") != std::string::npos) == !follower);
     CHECK(slurp(d / "out" / "summary.json").find("\"newton_converged\": true") != std::string::npos);
+  }
+  fs::remove_all(d);
+}
+
+TEST_CASE("a killed load path leaves its step table and probe history, whole rows only", "[cli][load_path]") {
+  // A long path (100,000 steps) killed soon after its first step: the tables are there, a
+  // few steps long, every row complete, beside the marker of an unfinished run.
+  const fs::path d = fs::temp_directory_path() / "perinom_killed_load_path";
+  fs::remove_all(d);
+  fs::create_directories(d);
+  const std::string start = "cd '" + d.string() + "' && { '" PERINOM_EXE "' run '" PERINOM_SOURCE_DIR
+                            "/examples/biaxial_compression.yaml' --out out --threads 1 --set stages.0.steps=100000 "
+                            ">/dev/null 2>&1 & echo $! > pid; }";
+  REQUIRE(std::system(start.c_str()) == 0);
+  const pid_t pid = std::stoi(slurp(d / "pid"));
+  const fs::path table = d / "out" / "load_steps.csv";
+  for (int k = 0; k < 600 && !fs::exists(table); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  ::kill(pid, SIGKILL);
+  for (int k = 0; k < 100 && ::kill(pid, 0) == 0; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  REQUIRE(fs::exists(table));
+  CHECK(fs::exists(d / "out" / "run.incomplete"));
+  for (const fs::path& f : {table, d / "out" / "probe_center_von_mises_history.csv"}) {
+    INFO(f.string());
+    const std::string s = slurp(f);
+    std::istringstream in(s);
+    std::string header, row;
+    std::getline(in, header);
+    const auto commas = std::count(header.begin(), header.end(), ',');
+    std::size_t rows = 0;
+    while (std::getline(in, row)) {
+      CHECK(std::count(row.begin(), row.end(), ',') == commas);
+      ++rows;
+    }
+    CHECK(s.back() == '\n');
+    CHECK(rows >= 1);
+    CHECK(rows < 100000);
   }
   fs::remove_all(d);
 }

@@ -46,6 +46,9 @@ struct LoadStepRecord {
   std::size_t broken = 0;             ///< with changes: bonds broken in this step
   double residual = 0.0;              ///< relative residual at the end of the step
   double seconds = 0.0;
+  /// For after_step: the report's history so far, this step's row the last (so an observer
+  /// can write the table while the path goes on).
+  const History* rows = nullptr;
 };
 
 /// Where a load path stands after a committed load step: with it the path continues bit
