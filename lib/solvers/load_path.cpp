@@ -6,6 +6,7 @@
 
 #include "perinom/core/error.hpp"
 #include "perinom/core/timer.hpp"
+#include "energy_ledger.hpp"
 #include "load_path_state.hpp"
 
 namespace perinom {
@@ -67,6 +68,13 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
   if (changes) rep.history.columns.push_back("broken_bonds");
   std::vector<double> fint(supports.has_supports() || changes ? model.dofs() : 0), stage_reactions;
   ModelHistory* plastic = model.history();
+  // An elastic body that breaks: the work done on it and the energy its breaks dissipated
+  // (external work less the strain energy now; energy_ledger.hpp).
+  std::optional<EnergyLedger> ledger;
+  if (changes && !plastic) {
+    rep.history.columns.push_back("external_work");
+    rep.history.columns.push_back("dissipated_energy");
+  }
   if (plastic)
     plastic->set_history_mode(opt.scheme == LoadPathScheme::lbc ? HistoryMode::flagged : HistoryMode::return_map);
   AdrOptions balance_opt = opt.adr;
@@ -85,9 +93,10 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
     if (changes) {
       if (resume->changes.empty()) throw std::invalid_argument("solve_load_path: the resumed state holds no record of the changes");
       changes->restore(resume->changes);
-      // The steps that broke bonds, from the rows so far (broken_bonds is the last column).
+      // The steps that broke bonds, from the rows so far.
       const std::size_t width = rep.history.columns.size();
-      for (std::size_t at = width - 1; at < rep.history.values.size(); at += width)
+      const std::size_t column = rep.history.column("broken_bonds");
+      for (std::size_t at = column; at < rep.history.values.size(); at += width)
         if (rep.history.values[at] > 0.0) ++rep.changes.changing_steps;
     }
     first_stage = std::size_t(resume->stage), first_step = resume->step + 1;
@@ -102,6 +111,12 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
   if (follow_density) {
     changes->stable_step();
     adr->raise_density(changes->row_sums());
+  }
+  if (changes && !plastic) {
+    // Where the path stands: at rest, or the resumed step's balanced state and its row.
+    const std::size_t rows = rep.history.rows();
+    ledger.emplace(model, u, rows ? rep.history.at(rows - 1, rep.history.column("external_work")) : 0.0,
+                   rows ? rep.history.at(rows - 1, rep.history.column("dissipated_energy")) : 0.0);
   }
 
   auto record = [&](LoadStepRecord& r, const std::vector<double>& xi0, double t0) {
@@ -122,6 +137,7 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
           rep.history.values[at + supports.add_support(loading.support_names[g]) * d + a] = stage_reactions[g * d + a];
     }
     if (changes) rep.history.values.push_back(double(r.broken));
+    if (ledger) rep.history.add({ledger->work(), ledger->dissipated()});
     rep.residual = r.residual;
     r.rows = &rep.history;
     if (after_step) after_step(r, u);
@@ -216,11 +232,15 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
           // The balanced state with the changes due there made; a fixed point when none are.
           model.follow_loads(stage.loading, r.load_factor);
           model.internal_force(u.data(), fint.data());
+          if (ledger) ledger->balanced(u, fint, r.rounds == 1);
           double reaction2 = 0.0;
           for (const auto dof : stage.loading.fixed) reaction2 += fint[dof] * fint[dof];
           if (std::sqrt(reaction2) > carried) carried = std::sqrt(reaction2), adr->set_load_floor(carried);
           const std::size_t due = changes->find(u.data());
-          if (due == 0) break;
+          if (due == 0) {
+            if (ledger) ledger->commit(model, u, fint, r.broken > 0);
+            break;
+          }
           // The cap: the state left is the last balance, its breaks made, the due ones not.
           if (r.rounds >= opt.max_rounds)
             throw SolveError(where(stage, int(k), step) + ": bonds still breaking after " + std::to_string(r.rounds) +

@@ -1,8 +1,8 @@
 // Bonds breaking on a load path (issue 18): each load step a fixed point of balance and
 // breaking. A brittle bar under displacement control carries f_t times its section, fails
 // within one load step and carries nothing after it; without grips its ends break first, in
-// a cascade of balances within the step; a plastic bar breaks when its plastic stress
-// reaches f_t; a cap on the balances stops the run, saying so; the Newton check solves a
+// a cascade of balances within the step; the energy its break dissipates is what it stored;
+// a plastic bar breaks when its plastic stress reaches f_t; a cap on the balances stops the run, saying so; the Newton check solves a
 // broken beam at its final damage state.
 #include <catch2/catch.hpp>
 
@@ -86,6 +86,22 @@ TEST_CASE("a brittle bar under displacement control carries f_t A, then nothing,
   REQUIRE(b.R.size() == 200);
   REQUIRE(b.broken.size() == 200);
   check_fails_at_f_t_A(b);  // a load step is 0.84% of f_t A (measured 0.40% below)
+  // The energy account. Up to the break the work of the internal forces over every dof is the
+  // pulled end's reaction times its displacement (the trapezoid of the table); after it the
+  // energy the bar stored at the breaking step's first balance, 0.5 k u_b^2 with k the intact
+  // stiffness, is all dissipated (the pieces store nothing).
+  const auto &s = b.t.at("load_factor"), &W = b.t.at("external_work"), &D = b.t.at("dissipated_energy");
+  const double pull = 6.0e-6;  // the end's displacement at the stage's end (m)
+  double work = 0.0;
+  for (std::size_t k = 0; k <= b.peak; ++k) {
+    work += 0.5 * (b.R[k] + (k ? b.R[k - 1] : 0.0)) * pull * (s[k] - (k ? s[k - 1] : 0.0));
+    CHECK(D[k] == 0.0);
+  }
+  CHECK(W[b.peak] == Approx(work).epsilon(1e-10));  // measured 3e-14
+  const double u_b = pull * s[b.peak + 1];
+  const double stored = 0.5 * b.R[b.peak] / (pull * s[b.peak]) * u_b * u_b;
+  CHECK(D.back() == Approx(stored).epsilon(1e-7));  // measured 2.8e-9
+  CHECK(W.back() == Approx(D.back()).epsilon(1e-9));
   CHECK(slurp(d.path / "out" / "summary.json").find("\"bonds_broken\": ") != std::string::npos);
   CHECK(b.o.out.find("   broken") != std::string::npos);  // the step table's column
 }

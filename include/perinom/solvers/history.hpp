@@ -3,8 +3,9 @@
 /// (Observer) and checkpoints (Checkpoints).
 #include <algorithm>
 #include <cstdint>
-#include <initializer_list>
 #include <functional>
+#include <initializer_list>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,12 @@ struct History {
     return {values.begin() + r * columns.size(), values.begin() + (r + 1) * columns.size()};
   }
   void add(std::initializer_list<double> row) { values.insert(values.end(), row); }
+  /// The index of the column `name`. @throws std::out_of_range if there is none.
+  std::size_t column(const std::string& name) const {
+    const auto at = std::find(columns.begin(), columns.end(), name);
+    if (at == columns.end()) throw std::out_of_range("History: no column '" + name + "'");
+    return static_cast<std::size_t>(at - columns.begin());
+  }
   /// Room for `rows` rows, at most 65,536 (a run recording more grows by doubling).
   void reserve(std::int64_t rows) {
     values.reserve(static_cast<std::size_t>(std::min<std::int64_t>(std::max<std::int64_t>(rows, 0), 65536)) *

@@ -93,7 +93,8 @@ int steps_done(const LoadPathState& state, const std::vector<LoadStage>& stages)
 /// most max_rounds balances (then the step fails, saying so). Each balance's residual is
 /// relative to at least the largest reaction norm the path has reached (a body broken apart
 /// carries none: AdrRelaxation::set_load_floor). The history gains the column broken_bonds
-/// (per step); checkpoints hold the changes (save) and resume restores them.
+/// (per step) and, for a model without history, external_work and dissipated_energy
+/// (energy_ledger.hpp); checkpoints hold the changes (save) and resume restores them.
 SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
                             const LoadPathOptions& options, std::vector<double>& u,
                             Progress* progress = nullptr,
