@@ -20,6 +20,28 @@ constexpr int kStepColumns = 3;   // stage, step, load_factor
 // A long path's tables are rewritten after its first step and then at most this often
 // (and at the end of the run), so a killed run leaves them a few seconds behind at worst.
 constexpr double kTableSeconds = 5.0;
+// A load step that takes longer than this (a cascade of breaks, a hard balance) says so
+// every this many seconds, so a run that spends minutes in one step is seen to be alive.
+constexpr double kQuietSeconds = 10.0;
+
+/// Lines within a long load step; quiet while the steps' own lines come often enough.
+class StepProgress : public Progress {
+ public:
+  void update(const ProgressSample& s) override {
+    const double now = wall_seconds();
+    if (now - last_line_ < kQuietSeconds) return;
+    std::printf("  ... load step %d/%d still balancing: %lld iterations in it, residual %.3e (target %.1e), %.0f s\n",
+                s.load_step, s.load_steps, static_cast<long long>(s.iteration), s.residual, s.target,
+                now - step_start_);
+    std::fflush(stdout);
+    last_line_ = now;
+  }
+  /// A step's own line was printed: the next step starts.
+  void step_done() { last_line_ = step_start_ = wall_seconds(); }
+
+ private:
+  double last_line_ = wall_seconds(), step_start_ = last_line_;
+};
 
 std::vector<const BoundProbe*> point_probes(const Problem& p) {
   std::vector<const BoundProbe*> out;
@@ -77,6 +99,7 @@ SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double
               "rounds", "flagged", "yielding", "plastic", "residual", "seconds", breaking ? "   broken" : "");
   std::int64_t done = resume ? steps_done(*resume, p.stages) : 0;  // load steps over all stages
   double tables_written = -kTableSeconds;
+  StepProgress progress;
   auto after_step = [&](const LoadStepRecord& r, const std::vector<double>& u) {
     ++done;
     probes.record(p, r, u);
@@ -91,6 +114,7 @@ SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double
     if (breaking) std::printf(" %8zu", r.broken);
     std::printf("\n");
     std::fflush(stdout);
+    progress.step_done();
     const auto& want = scene.output.vtk_steps;
     const bool listed = std::find(want.begin(), want.end(), done) != want.end();
     const bool periodic = scene.output.vtk_every > 0 && done % scene.output.vtk_every == 0;
@@ -100,6 +124,7 @@ SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double
     }
   };
   SolveHooks hooks;
+  hooks.progress = &progress;
   hooks.after_step = after_step;
   hooks.load_path_checkpoints = checkpoints;
   hooks.load_path_resume = resume;

@@ -41,6 +41,27 @@ void run_biaxial(const fs::path& d, const std::string& sets) {
   REQUIRE(WEXITSTATUS(status) == 0);
 }
 
+/// Starts `perinom run` on the biaxial example in a fresh folder `d` (output in d/out, stdout
+/// in d/out.txt) with the given --set overrides, in the background: its process id.
+pid_t start_biaxial(const fs::path& d, const std::string& sets) {
+  fs::remove_all(d);
+  fs::create_directories(d);
+  const std::string start = "cd '" + d.string() + "' && { '" PERINOM_EXE "' run '" PERINOM_SOURCE_DIR
+                            "/examples/biaxial_compression.yaml' --out out --threads 1 " + sets +
+                            " >out.txt 2>&1 & echo $! > pid; }";
+  REQUIRE(std::system(start.c_str()) == 0);
+  return std::stoi(slurp(d / "pid"));
+}
+
+/// Waits (at most `seconds`) until `done` holds, then kills the process and waits for it.
+template <class Done>
+void kill_when(pid_t pid, double seconds, Done done) {
+  for (int k = 0; k < int(seconds * 10) && !done(); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  ::kill(pid, SIGKILL);
+  for (int k = 0; k < 100 && ::kill(pid, 0) == 0; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+}
+
 }  // namespace
 
 TEST_CASE("a plastic scene writes its step table, probe histories and plastic fields", "[cli][load_path]") {
@@ -95,18 +116,9 @@ TEST_CASE("a killed load path leaves its step table and probe history, whole row
   // A long path (100,000 steps) killed soon after its first step: the tables are there, a
   // few steps long, every row complete, beside the marker of an unfinished run.
   const fs::path d = fs::temp_directory_path() / "perinom_killed_load_path";
-  fs::remove_all(d);
-  fs::create_directories(d);
-  const std::string start = "cd '" + d.string() + "' && { '" PERINOM_EXE "' run '" PERINOM_SOURCE_DIR
-                            "/examples/biaxial_compression.yaml' --out out --threads 1 --set stages.0.steps=100000 "
-                            ">/dev/null 2>&1 & echo $! > pid; }";
-  REQUIRE(std::system(start.c_str()) == 0);
-  const pid_t pid = std::stoi(slurp(d / "pid"));
+  const pid_t pid = start_biaxial(d, "--set stages.0.steps=100000");
   const fs::path table = d / "out" / "load_steps.csv";
-  for (int k = 0; k < 600 && !fs::exists(table); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  ::kill(pid, SIGKILL);
-  for (int k = 0; k < 100 && ::kill(pid, 0) == 0; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  kill_when(pid, 60.0, [&] { return fs::exists(table); });
   REQUIRE(fs::exists(table));
   CHECK(fs::exists(d / "out" / "run.incomplete"));
   for (const fs::path& f : {table, d / "out" / "probe_center_von_mises_history.csv"}) {
@@ -125,5 +137,18 @@ TEST_CASE("a killed load path leaves its step table and probe history, whole row
     CHECK(rows >= 1);
     CHECK(rows < 100000);
   }
+  fs::remove_all(d);
+}
+
+TEST_CASE("a load step that takes long says it is still balancing", "[cli][load_path]") {
+  // A first step that cannot converge (tolerance 1e-300): after 10 s a line says where it is.
+  const fs::path d = fs::temp_directory_path() / "perinom_long_load_step";
+  const pid_t pid = start_biaxial(d, "--set stages.0.steps=1 --set solver.tolerance=1e-300 "
+                                     "--set solver.displacement_tolerance=1e-300 --set solver.max_iterations=1000000000");
+  const auto said = [&] { return slurp(d / "out.txt").find("still balancing") != std::string::npos; };
+  kill_when(pid, 60.0, said);
+  INFO(slurp(d / "out.txt"));
+  CHECK(said());
+  CHECK(slurp(d / "out.txt").find("load step 1/101 still balancing: ") != std::string::npos);
   fs::remove_all(d);
 }
