@@ -1,6 +1,7 @@
 #include "load_path_state.hpp"
 
 #include <stdexcept>
+#include <string>
 
 namespace perinom::detail {
 
@@ -8,9 +9,15 @@ int restore(TangentModel& model, std::vector<LoadStage>& stages, const LoadPathS
             std::vector<double>& u, SolveReport& rep) {
   const bool fits = st.stage >= 0 && st.stage < int(stages.size()) && st.step >= 1 && st.step <= stages[st.stage].steps &&
                     st.stage_value0.size() == std::size_t(st.stage) + 1 && st.u.size() == u.size() &&
-                    st.u_prev.size() == u.size() && st.history.size() % rep.history.columns.size() == 0 &&
-                    (model.history() || st.plastic.empty());
+                    st.u_prev.size() == u.size() && (model.history() || st.plastic.empty());
   if (!fits) throw std::invalid_argument("solve_load_path: the resumed state does not fit the model and stages");
+  // One row per load step done: a table of another width (a checkpoint written by a version
+  // of perinom with other columns) would otherwise be read as rows cut at the wrong places.
+  const std::size_t rows = std::size_t(steps_done(st, stages)), width = rep.history.columns.size();
+  if (st.history.size() != rows * width)
+    throw std::invalid_argument("solve_load_path: the resumed step table holds " + std::to_string(st.history.size()) +
+                                " values for " + std::to_string(rows) + " load steps, not " + std::to_string(width) +
+                                " a step (the columns this run writes; a checkpoint of another perinom version?)");
   u = st.u;
   rep.iterations = st.iterations;
   rep.residual = st.residual;

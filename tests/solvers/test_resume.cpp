@@ -159,6 +159,18 @@ TEST_CASE("a load path resumed after a committed step ends bit for bit as the un
   std::vector<double> u_virgin;
   solve_load_path(p.as<CorrespondenceModel>(), p.stages, opt, u_virgin, nullptr, {}, {}, &virgin);
   CHECK_FALSE(same_bits(u_virgin, u));
+  // A step table of another width (a checkpoint of a version with other columns) is refused,
+  // even where its length happens to divide by this run's width.
+  const std::size_t width = whole.history.columns.size();
+  REQUIRE(states[3].history.size() == 4 * width);
+  for (const std::size_t values : {4 * (width - 1), 3 * width}) {
+    LoadPathState other = states[3];
+    other.history.resize(values);
+    Problem q = build();
+    std::vector<double> u_other;
+    CHECK_THROWS_WITH(solve_load_path(q.as<CorrespondenceModel>(), q.stages, opt, u_other, nullptr, {}, {}, &other),
+                      Catch::Contains("the resumed step table holds") && Catch::Contains("for 4 load steps"));
+  }
 }
 
 TEST_CASE("a finite-rotation load path resumed after a committed step ends bit for bit as the uninterrupted one", "[solvers][checkpoint][load_path]") {
