@@ -17,9 +17,6 @@ namespace {
 
 constexpr int kProbeColumns = 5;  // value, von_mises, mean_stress, equivalent_strain, eq_plastic_strain
 constexpr int kStepColumns = 3;   // stage, step, load_factor
-// A long path's tables are rewritten after its first step and then at most this often
-// (and at the end of the run), so a killed run leaves them a few seconds behind at worst.
-constexpr double kTableSeconds = 5.0;
 // A load step that takes longer than this (a cascade of breaks, a hard balance) says so
 // every this many seconds, so a run that spends minutes in one step is seen to be alive.
 constexpr double kQuietSeconds = 10.0;

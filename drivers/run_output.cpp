@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "perinom/core/timer.hpp"
 #include "perinom/io/csv_writer.hpp"
 
 namespace perinom::cli {
@@ -13,6 +14,13 @@ void write_history(const std::string& path, const History& h) {
   csv.header(h.columns);
   for (std::size_t r = 0; r < h.rows(); ++r) csv.row(h.row(r));
   csv.close();
+}
+
+void HistoryAsItGoes::update(const ProgressSample& s) {
+  inner_.update(s);
+  if (!s.history || s.history->rows() == 0 || wall_seconds() - written_ < kTableSeconds) return;
+  write_history(path_, *s.history);
+  written_ = wall_seconds();
 }
 
 void add_energy_balance(const History& h, io::Json& solver) {

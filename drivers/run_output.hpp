@@ -1,7 +1,9 @@
 #pragma once
 // What `perinom run` writes of a solve's history, serial or distributed.
 #include <string>
+#include <utility>
 
+#include "perinom/core/progress.hpp"
 #include "perinom/io/json_writer.hpp"
 #include "perinom/solvers/history.hpp"
 
@@ -9,6 +11,25 @@ namespace perinom::cli {
 
 /// The history as CSV, one row per recorded iteration or step.
 void write_history(const std::string& path, const History& h);
+
+/// How often a run rewrites its history files while it goes on (after the first rows, then
+/// at most this often; whole at the end), so a killed run leaves them a few seconds behind.
+constexpr double kTableSeconds = 5.0;
+
+/// A progress report that also rewrites the solver's history (ProgressSample::history) to
+/// `path` every kTableSeconds, passing every sample on to `inner`.
+class HistoryAsItGoes : public Progress {
+ public:
+  HistoryAsItGoes(Progress& inner, std::string path) : inner_(inner), path_(std::move(path)) {}
+  void update(const ProgressSample& s) override;
+  void phase(const char* what) override { inner_.phase(what); }
+  void finish() override { inner_.finish(); }
+
+ private:
+  Progress& inner_;
+  std::string path_;
+  double written_ = -1e300;
+};
 
 /// A Verlet history's energy balance at the end (kinetic + strain + released - work, against
 /// the initial energy) over the largest work or energy recorded, as solver["energy_balance"];

@@ -5,6 +5,7 @@
 
 #include "perinom/core/error.hpp"
 #include "run_checkpoint.hpp"
+#include "run_output.hpp"
 #include "snapshot.hpp"
 #include "terminal_progress.hpp"
 
@@ -26,7 +27,8 @@ SolveReport solve(Problem& p, const std::string& dir, std::vector<double>& u, io
   }
   // ADR snapshots are stamped with the iteration, Verlet snapshots with the time (s).
   const bool dynamic = solver_of(scene).dynamic;
-  TerminalProgress progress(scene.solver.type.c_str());
+  TerminalProgress terminal(scene.solver.type.c_str());
+  HistoryAsItGoes progress(terminal, dir + "/history.csv");
   SolveHooks hooks;
   hooks.progress = &progress;
   hooks.observe = {scene.output.vtk_every, [&](std::int64_t it, double t, const std::vector<double>& state) {

@@ -172,6 +172,7 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     if (progress_ && rep.iterations % 50 == 0) {
       sample_.iteration = rep.iterations;
       sample_.residual = r;
+      sample_.history = &rep.history;
       progress_->update(sample_);
     }
     if (checkpoints_.due(rep.iterations)) checkpoints_.call(state(u, r, du, rep));

@@ -241,6 +241,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
       sample.iteration = step;
       sample.time = t;
       if (changes) sample.broken = static_cast<std::int64_t>(changed);
+      sample.history = &rep.history;
       progress->update(sample);
     }
     if (checkpoints.due(step)) {

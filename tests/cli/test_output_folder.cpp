@@ -1,7 +1,7 @@
 // The output folder cannot mislead: an earlier run's files are removed at start (unless
 // --keep), the marker run.incomplete exists exactly while a run is going (a killed run
-// leaves it), summary.json carries the status, and no .tmp file survives a run that ends
-// by itself, however it ends.
+// leaves it, and its history so far), summary.json carries the status, and no .tmp file
+// survives a run that ends by itself, however it ends.
 #include <signal.h>
 #include <unistd.h>
 
@@ -115,4 +115,9 @@ TEST_CASE("a killed run leaves its marker and no summary: it cannot pass for a f
   for (int k = 0; k < 100 && ::kill(pid, 0) == 0; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   CHECK(fs::exists(dir.path / "out" / "run.incomplete"));
   CHECK_FALSE(fs::exists(dir.path / "out" / "summary.json"));
+  // The history so far is there (rewritten every few seconds), in whole rows.
+  const std::string history = slurp(dir.path / "out" / "history.csv");
+  CHECK(history.rfind("iteration,load_factor,residual", 0) == 0);
+  CHECK(std::count(history.begin(), history.end(), '\n') >= 2);
+  CHECK(history.back() == '\n');
 }

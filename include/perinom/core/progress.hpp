@@ -4,6 +4,8 @@
 
 namespace perinom {
 
+struct History;
+
 /// One progress sample.
 struct ProgressSample {
   std::int64_t iteration = 0;   ///< iterations (or steps) done so far, all load steps
@@ -13,6 +15,7 @@ struct ProgressSample {
   double target = 0.0;          ///< the tolerance the residual must reach (ADR) or 0
   double time = 0.0;            ///< simulated time (Verlet) or 0
   std::int64_t broken = -1;     ///< bonds broken so far (Verlet with breaking), or -1
+  const History* history = nullptr;  ///< ADR's or Verlet's rows so far, for a report that writes them
 };
 
 /// Receives samples; the command line draws a bar on a terminal, plain lines otherwise.
