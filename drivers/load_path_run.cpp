@@ -95,15 +95,16 @@ SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double
   std::printf("  %5s %5s %6s %10s %6s %8s %8s %8s %10s %8s%s\n", "stage", "step", "factor", "iterations",
               "rounds", "flagged", "yielding", "plastic", "residual", "seconds", breaking ? "   broken" : "");
   std::int64_t done = resume ? steps_done(*resume, p.stages) : 0;  // load steps over all stages
-  double tables_written = -kTableSeconds;
+  TableClock tables;
   StepProgress progress;
   auto after_step = [&](const LoadStepRecord& r, const std::vector<double>& u) {
     ++done;
     probes.record(p, r, u);
-    if (r.rows && wall_seconds() - tables_written >= kTableSeconds) {
+    if (r.rows && tables.due()) {
+      const double started = wall_seconds();
       write_history(dir + "/load_steps.csv", *r.rows);  // a resumed path's rows include the checkpoint's
       probes.write(p, dir);
-      tables_written = wall_seconds();
+      tables.wrote(started);
     }
     std::printf("  %5d %5d %6.3f %10lld %6d %8zu %8zu %8zu %10.3e %8.3f", r.stage, r.step, r.load_factor,
                 static_cast<long long>(r.iterations), r.rounds, r.newly_flagged, r.yielding, r.plastic,

@@ -16,11 +16,19 @@ void write_history(const std::string& path, const History& h) {
   csv.close();
 }
 
+bool TableClock::due() const { return wall_seconds() >= next_; }
+
+void TableClock::wrote(double started) {
+  const double now = wall_seconds();
+  next_ = now + std::max(kTableSeconds, 50.0 * (now - started));
+}
+
 void HistoryAsItGoes::update(const ProgressSample& s) {
   inner_.update(s);
-  if (!s.history || s.history->rows() == 0 || wall_seconds() - written_ < kTableSeconds) return;
+  if (!s.history || s.history->rows() == 0 || !clock_.due()) return;
+  const double started = wall_seconds();
   write_history(path_, *s.history);
-  written_ = wall_seconds();
+  clock_.wrote(started);
 }
 
 void add_energy_balance(const History& h, io::Json& solver) {

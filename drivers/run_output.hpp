@@ -12,12 +12,23 @@ namespace perinom::cli {
 /// The history as CSV, one row per recorded iteration or step.
 void write_history(const std::string& path, const History& h);
 
-/// How often a run rewrites its history files while it goes on (after the first rows, then
-/// at most this often; whole at the end), so a killed run leaves them a few seconds behind.
-constexpr double kTableSeconds = 5.0;
+/// When a run rewrites its history files while it goes on: at the first rows, then after
+/// kTableSeconds or 50 times the last rewrite's own time, whichever is longer (a table of
+/// millions of rows costs at most 2% of the run); whole at the end. A killed run leaves them a
+/// few seconds behind.
+class TableClock {
+ public:
+  static constexpr double kTableSeconds = 5.0;
+  bool due() const;
+  /// Call with wall_seconds() from before the rewrite, right after it.
+  void wrote(double started);
+
+ private:
+  double next_ = -1e300;
+};
 
 /// A progress report that also rewrites the solver's history (ProgressSample::history) to
-/// `path` every kTableSeconds, passing every sample on to `inner`.
+/// `path` when its TableClock is due, passing every sample on to `inner`.
 class HistoryAsItGoes : public Progress {
  public:
   HistoryAsItGoes(Progress& inner, std::string path) : inner_(inner), path_(std::move(path)) {}
@@ -28,7 +39,7 @@ class HistoryAsItGoes : public Progress {
  private:
   Progress& inner_;
   std::string path_;
-  double written_ = -1e300;
+  TableClock clock_;
 };
 
 /// A Verlet history's energy balance at the end (kinetic + strain + released - work, against
