@@ -97,10 +97,12 @@ TEST_CASE("a brittle bar under displacement control carries f_t A, then nothing,
     work += 0.5 * (b.R[k] + (k ? b.R[k - 1] : 0.0)) * pull * (s[k] - (k ? s[k - 1] : 0.0));
     CHECK(D[k] == 0.0);
   }
-  CHECK(W[b.peak] == Approx(work).epsilon(1e-10));  // measured 3e-14
+  // Both agree to the balances' tolerance (1e-8 here): measured 3e-14 and 2.8e-9 in the
+  // Release build, 4.9e-10 and 9.5e-10 in the sanitized one (other iterates).
+  CHECK(W[b.peak] == Approx(work).epsilon(1e-7));
   const double u_b = pull * s[b.peak + 1];
   const double stored = 0.5 * b.R[b.peak] / (pull * s[b.peak]) * u_b * u_b;
-  CHECK(D.back() == Approx(stored).epsilon(1e-7));  // measured 2.8e-9
+  CHECK(D.back() == Approx(stored).epsilon(1e-7));
   CHECK(W.back() == Approx(D.back()).epsilon(1e-9));
   CHECK(slurp(d.path / "out" / "summary.json").find("\"bonds_broken\": ") != std::string::npos);
   CHECK(b.o.out.find("   broken") != std::string::npos);  // the step table's column
