@@ -13,15 +13,16 @@
 #include <signal.h>
 #include <unistd.h>
 
-#include <chrono>
-#include <thread>
+#include "../support/background_run.hpp"
 #include "../support/slurp.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
+using test_support::kill_when;
 using test_support::slurp;
+using test_support::start_in_background;
 
 std::size_t lines(const fs::path& p) {
   const std::string s = slurp(p);
@@ -46,20 +47,8 @@ void run_biaxial(const fs::path& d, const std::string& sets) {
 pid_t start_biaxial(const fs::path& d, const std::string& sets) {
   fs::remove_all(d);
   fs::create_directories(d);
-  const std::string start = "cd '" + d.string() + "' && { '" PERINOM_EXE "' run '" PERINOM_SOURCE_DIR
-                            "/examples/biaxial_compression.yaml' --out out --threads 1 " + sets +
-                            " >out.txt 2>&1 & echo $! > pid; }";
-  REQUIRE(std::system(start.c_str()) == 0);
-  return std::stoi(slurp(d / "pid"));
-}
-
-/// Waits (at most `seconds`) until `done` holds, then kills the process and waits for it.
-template <class Done>
-void kill_when(pid_t pid, double seconds, Done done) {
-  for (int k = 0; k < int(seconds * 10) && !done(); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  ::kill(pid, SIGKILL);
-  for (int k = 0; k < 100 && ::kill(pid, 0) == 0; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  return start_in_background(d, "'" PERINOM_EXE "' run '" PERINOM_SOURCE_DIR "/examples/biaxial_compression.yaml' "
+                                "--out out --threads 1 " + sets + " >out.txt 2>&1");
 }
 
 }  // namespace

@@ -2,12 +2,7 @@
 // --keep), the marker run.incomplete exists exactly while a run is going (a killed run
 // leaves it, and its history so far), summary.json carries the status, and no .tmp file
 // survives a run that ends by itself, however it ends.
-#include <signal.h>
-#include <unistd.h>
-
-#include <chrono>
-#include <thread>
-
+#include "../support/background_run.hpp"
 #include "../support/cli.hpp"
 
 using namespace cli_test;
@@ -101,18 +96,11 @@ TEST_CASE("summary.json has the status, and the marker is gone after exit codes 
 TEST_CASE("a killed run leaves its marker and no summary: it cannot pass for a finished one", "[cli]") {
   ScratchDir dir;
   std::ofstream(dir.path / "scene.yaml") << tiny_scene;
-  const std::string q = "'" + dir.path.string() + "'";
-  const std::string start = "cd " + q + " && { '" PERINOM_EXE "' run scene.yaml --out out --threads 1 "
-                            "--set solver.tolerance=1e-300 --set solver.displacement_tolerance=1e-300 "
-                            "--set solver.max_iterations=1000000000 >/dev/null 2>&1 & echo $! > pid; }";
-  REQUIRE(std::system(start.c_str()) == 0);
-  const pid_t pid = std::stoi(slurp(dir.path / "pid"));
-  // Wait (at most 30 s) until the solve is under way: the marker exists.
-  for (int k = 0; k < 300 && !fs::exists(dir.path / "out" / "run.incomplete"); ++k)
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  ::kill(pid, SIGKILL);
-  for (int k = 0; k < 100 && ::kill(pid, 0) == 0; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const pid_t pid = test_support::start_in_background(
+      dir.path, "'" PERINOM_EXE "' run scene.yaml --out out --threads 1 --set solver.tolerance=1e-300 "
+                "--set solver.displacement_tolerance=1e-300 --set solver.max_iterations=1000000000 >/dev/null 2>&1");
+  // Killed once the solve is under way (the marker exists; at most 30 s).
+  test_support::kill_when(pid, 30.0, [&] { return fs::exists(dir.path / "out" / "run.incomplete"); }, 300);
   CHECK(fs::exists(dir.path / "out" / "run.incomplete"));
   CHECK_FALSE(fs::exists(dir.path / "out" / "summary.json"));
   // The history so far is there (rewritten every few seconds), in whole rows.
