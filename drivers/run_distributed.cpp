@@ -5,8 +5,9 @@
 // Rank 0 prints and writes the history, the probes and summary.json; every rank writes its
 // piece of each snapshot. Partial, and refused otherwise, naming the key: correspondence
 // scenes of the classical or consistent formulation on a lattice (the consistent correction
-// solved over the ranks), radius families, constraints on their particles, tractions, adr or
-// verlet. Every rank builds the whole cloud and loading (O(N)
+// solved over the ranks), radius families, constraints on their particles or at the face
+// (Galerkin, their multipliers solved over the ranks: Loading::ranks), tractions and
+// pressures, adr or verlet. Every rank builds the whole cloud and loading (O(N)
 // memory per rank) to choose its part.
 #include <omp.h>
 
@@ -22,10 +23,11 @@
 #include "output_folder.hpp"
 #include "perinom/core/error.hpp"
 #include "perinom/core/timer.hpp"
-#include "perinom/distributed/local_loading.hpp"
+#include "perinom/distributed/loading_share.hpp"
 #include "perinom/distributed/correction_share.hpp"
 #include "perinom/neighbors/partition.hpp"
 #include "perinom/neighbors/search.hpp"
+#include "perinom/scene/rank_loading.hpp"
 #include "perinom/scene/registry.hpp"
 #include "perinom/solvers/adr.hpp"
 #include "perinom/solvers/verlet.hpp"
@@ -60,7 +62,7 @@ void require_distributed(const Scene& s, const Options& opt) {
     throw InputError(s.source + ": " + key + ": " + what +
                      " is not distributed yet (mpirun -np R perinom run distributes correspondence scenes of the "
                      "classical or consistent formulation on a box, solved by adr or verlet, with constraints on their particles "
-                     "and tractions); run it without mpirun");
+                     "or at the face, tractions and pressures); run it without mpirun");
   };
   if (!opt.restart.empty()) refuse("--restart", "a restart");
   if (s.model.type != "correspondence") refuse("model.type", s.model.type);
@@ -78,10 +80,6 @@ void require_distributed(const Scene& s, const Options& opt) {
   if (s.solver.check != "none") refuse("solver.check", "the " + s.solver.check + " check");
   if (s.output.checkpoint_every > 0) refuse("output.checkpoint_every", "a checkpoint");
   if (s.output.csv) refuse("output.csv", "a snapshot as CSV");
-  for (const BoundarySpec& b : s.boundary) {
-    if (b.at_face) refuse(b.key + ".at", "a constraint at the face");
-    if (b.pressure) refuse(b.key + ".pressure", "a pressure");
-  }
 }
 
 }  // namespace
@@ -133,7 +131,8 @@ int run_distributed(const Options& opt) {
   CorrespondenceModel& local_model = *model;
   local.model = std::move(model);
   DistributedModel distributed(local_model, part);
-  Loading loading = local_loading(frame.loading, part, d);
+  const LoadingShare loading_share(part, d);
+  Loading loading = rank_loading(scene, frame, part, local.cloud, local_model, loading_share);
   if (consistent && !loading.force.empty()) {
     // Its tractions act at the facets through the trace: each owned particle's share.
     const std::vector<double> f = side_traction_forces(scene, local_model.trace(), local.cloud.size());

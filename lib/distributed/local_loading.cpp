@@ -7,8 +7,8 @@ namespace perinom {
 Loading local_loading(const Loading& whole, const LocalPart& part, int d) {
   if (whole.coupled_constraints())
     throw std::invalid_argument("local_loading: face-located constraints are not distributed");
-  if (!whole.value0.empty() || !whole.force0.empty() || whole.has_pressure())
-    throw std::invalid_argument("local_loading: load stages and pressures are not distributed");
+  if (!whole.value0.empty() || !whole.force0.empty())
+    throw std::invalid_argument("local_loading: load stages are not distributed");
   const auto owned = owned_index(part);
   Loading mine;
   mine.support_names = whole.support_names;

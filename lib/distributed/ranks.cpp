@@ -39,6 +39,10 @@ void Halo::update() {
   if (vec_) distributed()->halo_update(vec_);
 }
 
+void Halo::add_to_owners() {
+  if (vec_) distributed()->halo_add_to_owners(vec_);
+}
+
 double sum_over_ranks(double v) {
   if (const detail::PetscPlugin* p = distributed()) p->reduce(&v, 1, false);
   return v;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -44,10 +45,29 @@ void Loading::impose(double s, double* u, double t) const {
     for (std::size_t k = 0; k < fixed.size(); ++k) u[fixed[k]] = target(s, k, t);
     return;
   }
-  for (std::size_t k = 0; k < fixed.size(); ++k) {
-    double sum = 0.0;
-    for (Offset c = couplings[k]; c < couplings[k + 1]; ++c) sum += coef[c] * u[coupled[c]];
-    u[fixed[k]] = scale[k] * (target(s, k, t) - sum);
+  // Gauss-Seidel sweeps until the constrained values stop changing: a face constraint reads
+  // the other constrained dofs of its face, and a dynamic run needs E u = t exactly at every
+  // step (one sweep a step let them lag behind the free dofs, a delay that pumped energy into
+  // the vibrating bar held at its face). Distributed, each sweep reads the ghost dofs from
+  // their owners (the owned ones from u as it changes), and every rank sweeps as often as the
+  // one that converges last.
+  const std::size_t own = ranks ? ranks->owned_dofs() : SIZE_MAX;
+  for (int sweep = 0; sweep < 200; ++sweep) {
+    const double* all = ranks ? ranks->with_ghosts(u) : u;
+    double change = 0.0, size = 0.0;
+    for (std::size_t k = 0; k < fixed.size(); ++k) {
+      double sum = 0.0;
+      for (Offset c = couplings[k]; c < couplings[k + 1]; ++c) {
+        const auto j = static_cast<std::size_t>(coupled[c]);
+        sum += coef[c] * (j < own ? u[j] : all[j]);
+      }
+      const double next = scale[k] * (target(s, k, t) - sum);
+      change = std::max(change, std::abs(next - u[fixed[k]]));
+      size = std::max(size, std::abs(next));
+      u[fixed[k]] = next;
+    }
+    if (ranks) change = ranks->max(change), size = ranks->max(size);
+    if (change <= 1e-15 * size) return;
   }
 }
 
@@ -60,6 +80,7 @@ double Loading::force_norm(double s) const {
 }
 
 void Loading::begin_stage(const Loading* previous, const double* u) {
+  if (ranks) throw std::logic_error("Loading::begin_stage: load stages are not distributed");
   value0.assign(fixed.size(), 0.0);
   for (std::size_t k = 0; k < fixed.size(); ++k) {
     double v = u[fixed[k]];
@@ -108,18 +129,31 @@ void Loading::solve_multipliers(const RAt& r_at) const {
   // couplings among constrained dofs of one face (a reconstruction reads its neighbours on the
   // face), so the sweeps contract quickly; they stop at rounding.
   double size = 0.0;
+  // Distributed, a constraint's couplings reach constrained dofs of other ranks: each sweep
+  // sums over the local part's dofs and adds the ghosts' sums to their owners, and every rank
+  // sweeps as often as the one that converges last.
   for (std::size_t k = 0; k < m; ++k) lambda_[k] = -scale[k] * r_at(fixed[k]), size = std::max(size, std::abs(lambda_[k]));
+  if (ranks) size = ranks->max(size);
   for (int sweep = 0; sweep < 200 && size > 0.0; ++sweep) {
-    std::fill(sum_.begin(), sum_.end(), 0.0);
-    for (std::size_t k = 0; k < m; ++k)
-      for (Offset c = couplings[k]; c < couplings[k + 1]; ++c)
-        if (coupled_constraint[c] >= 0) sum_[coupled_constraint[c]] += coef[c] * lambda_[k];
+    if (ranks) {
+      double* sum = ranks->zeroed_scratch();
+      for (std::size_t k = 0; k < m; ++k)
+        for (Offset c = couplings[k]; c < couplings[k + 1]; ++c) sum[coupled[c]] += coef[c] * lambda_[k];
+      ranks->add_ghosts_to_owners();
+      for (std::size_t l = 0; l < m; ++l) sum_[l] = sum[fixed[l]];
+    } else {
+      std::fill(sum_.begin(), sum_.end(), 0.0);
+      for (std::size_t k = 0; k < m; ++k)
+        for (Offset c = couplings[k]; c < couplings[k + 1]; ++c)
+          if (coupled_constraint[c] >= 0) sum_[coupled_constraint[c]] += coef[c] * lambda_[k];
+    }
     double change = 0.0;
     for (std::size_t l = 0; l < m; ++l) {
       const double next = -scale[l] * (r_at(fixed[l]) + sum_[l]);
       change = std::max(change, std::abs(next - lambda_[l]));
       lambda_[l] = next;
     }
+    if (ranks) change = ranks->max(change);
     if (change <= 1e-15 * size) break;
   }
 }
@@ -145,9 +179,19 @@ void Loading::multipliers(const double* fint, double s, double* out) const {
 void Loading::reduce(double* r) const {
   if (!galerkin()) return zero_fixed(r);
   solve_multipliers([r](std::int64_t dof) { return r[dof]; });
-  for (std::size_t k = 0; k < fixed.size(); ++k)
-    for (Offset c = couplings[k]; c < couplings[k + 1]; ++c)
-      if (coupled_constraint[c] < 0) r[coupled[c]] += coef[c] * lambda_[k];
+  if (ranks) {
+    // The couplings' shares over the local part, the ghosts' added to their owners (the
+    // constrained dofs' shares are zeroed below).
+    double* add = ranks->zeroed_scratch();
+    for (std::size_t k = 0; k < fixed.size(); ++k)
+      for (Offset c = couplings[k]; c < couplings[k + 1]; ++c) add[coupled[c]] += coef[c] * lambda_[k];
+    ranks->add_ghosts_to_owners();
+    for (std::size_t dof = 0; dof < ranks->owned_dofs(); ++dof) r[dof] += add[dof];
+  } else {
+    for (std::size_t k = 0; k < fixed.size(); ++k)
+      for (Offset c = couplings[k]; c < couplings[k + 1]; ++c)
+        if (coupled_constraint[c] < 0) r[coupled[c]] += coef[c] * lambda_[k];
+  }
   zero_fixed(r);
 }
 

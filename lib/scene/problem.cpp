@@ -205,8 +205,7 @@ Problem build_problem_frame(const Scene& s) {
   for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
   BoundaryData data{&body.facets, &p.groups, nullptr};
   FaceOf face_of;
-  p.loading = make_loading(s, s.boundary, p.cloud, face_of, data);
-  if (!face_of.empty()) throw std::logic_error("build_problem_frame: face-located constraints need the model");
+  p.loading = make_loading(s, s.boundary, p.cloud, face_of, data);  // face-located ones uncoupled (rank_loading)
   return p;
 }
 

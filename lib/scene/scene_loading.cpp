@@ -48,6 +48,15 @@ void add_group_traction(const FacetGroup& group, const double* t, double p, cons
   }
 }
 
+/// The traction on a side: `traction` (if given) less `pressure` along the outward normal.
+std::array<double, 3> side_load(const Side& side, const std::optional<std::array<double, 3>>& traction, double pressure,
+                                int d) {
+  std::array<double, 3> t{0, 0, 0};
+  const auto n = outward_normal(side);
+  for (int a = 0; a < d; ++a) t[a] = (traction ? (*traction)[a] : 0.0) - pressure * n[a];
+  return t;
+}
+
 /// The group a boundary item names; errors name the key and list the groups there are.
 const FacetGroup& region_group(const BoundarySpec& b, const BoundaryData& boundary) {
   const FacetGroup* g = boundary.groups ? find_group(*boundary.groups, b.region.group) : nullptr;
@@ -105,15 +114,12 @@ Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, 
       if (b.pressure) add_group_traction(*group, zero, *b.pressure, data, load.pressure_force);
       continue;
     }
-    std::array<double, 3> t{0, 0, 0}, tp{0, 0, 0};
-    const auto n = outward_normal(b.region.side);
-    for (int a = 0; a < d; ++a) {
-      if (b.traction) t[a] += (*b.traction)[a];
-      if (b.pressure) t[a] -= *b.pressure * n[a], tp[a] = -*b.pressure * n[a];
-    }
-    add_side_traction(b.region.side, ids, t.data(), cloud, data.trace, load.force);
+    const Side& side = b.region.side;
+    add_side_traction(side, ids, side_load(side, b.traction, b.pressure.value_or(0.0), d).data(), cloud, data.trace,
+                      load.force);
     if (!b.pressure) continue;
-    add_side_traction(b.region.side, ids, tp.data(), cloud, data.trace, load.pressure_force);
+    add_side_traction(side, ids, side_load(side, std::nullopt, *b.pressure, d).data(), cloud, data.trace,
+                      load.pressure_force);
   }
   return load;
 }
@@ -122,10 +128,11 @@ std::vector<double> side_traction_forces(const Scene& s, const BoundaryTrace& tr
   std::vector<double> force(particles * s.dim, 0.0);
   if (trace.empty()) return force;  // a local part with no facet: no traction reaches it
   for (const auto& b : s.boundary) {
-    if (!b.traction) continue;
+    if (!b.traction && !b.pressure) continue;
     if (b.region.is_group())
       throw std::logic_error("side_traction_forces: " + b.where + ": a group's traction (a body from files)");
-    add_side_traction(b.region.side, {}, b.traction->data(), PointCloud{}, &trace, force);
+    const auto t = side_load(b.region.side, b.traction, b.pressure.value_or(0.0), s.dim);
+    add_side_traction(b.region.side, {}, t.data(), PointCloud{}, &trace, force);
   }
   return force;
 }

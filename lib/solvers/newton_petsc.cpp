@@ -382,7 +382,7 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
 
 extern "C" const perinom::detail::PetscPlugin* perinom_petsc_plugin() {
   using namespace perinom::detail;
-  static const PetscPlugin plugin{solve,        end_petsc, world,  halo_create, halo_update,
-                                  halo_destroy, reduce,    gather, barrier,     partition_graph};
+  static const PetscPlugin plugin{solve,        end_petsc,          world,  halo_create, halo_update, halo_add_to_owners,
+                                  halo_destroy, reduce,             gather, barrier,     partition_graph};
   return &plugin;
 }

@@ -25,6 +25,7 @@ struct PetscPlugin {
   void* (*halo_create)(std::size_t owned, const std::int64_t* ghosts, std::size_t count, int block,
                        double* values);
   void (*halo_update)(void* halo);
+  void (*halo_add_to_owners)(void* halo);
   void (*halo_destroy)(void* halo);
   void (*reduce)(double* values, int count, bool max);
   void (*gather)(const double* owned, std::size_t count, double* root);

@@ -43,6 +43,12 @@ void halo_update(void* halo) {
   check(VecGhostUpdateEnd(v, INSERT_VALUES, SCATTER_FORWARD), "VecGhostUpdateEnd");
 }
 
+void halo_add_to_owners(void* halo) {
+  Vec v = static_cast<Vec>(halo);
+  check(VecGhostUpdateBegin(v, ADD_VALUES, SCATTER_REVERSE), "VecGhostUpdateBegin");
+  check(VecGhostUpdateEnd(v, ADD_VALUES, SCATTER_REVERSE), "VecGhostUpdateEnd");
+}
+
 void halo_destroy(void* halo) {
   Vec v = static_cast<Vec>(halo);
   VecDestroy(&v);

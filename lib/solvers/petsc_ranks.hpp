@@ -14,6 +14,8 @@ void world(int* rank, int* size);
 void* halo_create(std::size_t owned, const std::int64_t* ghosts, std::size_t count, int block, double* values);
 /// The ghosts' values from their owners (a forward scatter).
 void halo_update(void* halo);
+/// Each ghost's value added into its owner's (a reverse scatter); the ghosts keep theirs.
+void halo_add_to_owners(void* halo);
 void halo_destroy(void* halo);
 /// values[0..count) summed (or their largest, with max) over the ranks, on every rank.
 void reduce(double* values, int count, bool max);

@@ -135,10 +135,14 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   };
   auto record = [&]() { rep.history.values.insert(rep.history.values.end(), row.begin(), row.end()); };
   double t = 0.0;
-  // Galerkin supports whose targets move (a prescribed displacement): their multipliers.
-  const bool moving_galerkin =
-      loading.galerkin() &&
-      (loading.has_rates() || std::any_of(loading.value.begin(), loading.value.end(), [](double x) { return x != 0.0; }));
+  // Galerkin supports whose targets move (a prescribed displacement): their multipliers, on
+  // every rank if on one (a distributed loading solves them over the ranks).
+  double moving = loading.galerkin() && (loading.has_rates() || std::any_of(loading.value.begin(), loading.value.end(),
+                                                                             [](double x) { return x != 0.0; }))
+                      ? 1.0
+                      : 0.0;
+  model.max_across_ranks(&moving, 1);
+  const bool moving_galerkin = moving > 0.0;
   std::vector<double> lambda(moving_galerkin ? loading.fixed.size() : 0), lambda_old(lambda.size());
   std::int64_t first_step = 1;
   if (resume) {

@@ -56,8 +56,13 @@ TEST_CASE("Verlet with the improved formulation is stopped by the energy balance
 }
 
 TEST_CASE("Verlet with the consistent and classical formulations conserves energy on the vibrating bar", "[cli][verlet]") {
-  for (const char* f : {"consistent", "classical"}) {
-    const Outcome o = bar(std::string("verlet_") + f, "run", std::string("--out out --set model.formulation=") + f);
+  // Held at the particles and at the face (Galerkin): the face constraints read each other
+  // and must hold exactly at every step; with one Gauss-Seidel sweep a step they lagged, and
+  // the consistent bar gained energy until the guard stopped it at step 3840 (exit 3).
+  for (const std::string f : {"consistent", "classical", "consistent --set boundary.0.at=face",
+                              "classical --set boundary.0.at=face"}) {
+    std::string name = "verlet_" + f.substr(0, f.find(' ')) + (f.find("face") != std::string::npos ? "_face" : "");
+    const Outcome o = bar(name, "run", "--out out --set model.formulation=" + f);
     INFO(f << ": " << o.out << o.err);
     REQUIRE(o.exit_code == 0);
     CHECK(o.err.empty());

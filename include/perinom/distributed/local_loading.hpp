@@ -8,8 +8,10 @@ namespace perinom {
 /// The part of `whole` (a loading over the whole cloud, d dofs per particle) that acts on the
 /// owned particles of `part`, numbered as their dofs are in the DistributedModel: the
 /// constraints on them (values, rates, supports, all support names kept, so every rank's
-/// reactions line up) and their external forces. A face-located constraint reads other
-/// particles and a stage start carries values: both are refused (std::invalid_argument).
+/// reactions line up) and their external forces (pressures' included: small strain, they do
+/// not follow the surface, and pressure_force is dropped). A face-located constraint reads
+/// other particles (rank_loading.hpp couples them) and a stage start carries values: both are
+/// refused (std::invalid_argument).
 Loading local_loading(const Loading& whole, const LocalPart& part, int d);
 
 }  // namespace perinom

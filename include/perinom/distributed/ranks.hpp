@@ -21,7 +21,8 @@ Ranks mpi_ranks();
 /// A rank's local array in the distributed numbering: `owned` blocks of `block` values
 /// first (the rank's contiguous range; ranks follow each other in rank order), then one
 /// block for each of `ghosts` (their positions along that numbering). update() fills the
-/// ghost blocks from their owners, in place. The array must outlive the halo and not move.
+/// ghost blocks from their owners, in place; add_to_owners() adds each ghost block into its
+/// owner's block (the ghosts keep their values). The array must outlive the halo and not move.
 class Halo {
  public:
   Halo(std::size_t owned, const std::vector<std::int64_t>& ghosts, int block, double* values);
@@ -29,6 +30,7 @@ class Halo {
   Halo(const Halo&) = delete;
   Halo& operator=(const Halo&) = delete;
   void update();
+  void add_to_owners();
 
  private:
   void* vec_ = nullptr;

@@ -1,6 +1,7 @@
 #pragma once
 /// @file Boundary conditions reduced to what a solver applies: fixed degrees of freedom
 /// with prescribed values, and an external force vector, both at full load.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -8,6 +9,23 @@
 #include "perinom/core/types.hpp"
 
 namespace perinom {
+
+/// What a loading spread over MPI ranks needs of them (issue 19; lib/distributed): a rank's
+/// loading holds the constraints of its owned dofs (the first owned_dofs() of its local part's
+/// numbering), and their couplings read the part's ghost dofs too (indices from owned_dofs() on).
+/// Every call is collective: each rank makes the same calls in the same order.
+class LoadingRanks {
+ public:
+  virtual ~LoadingRanks() = default;
+  virtual std::size_t owned_dofs() const = 0;
+  /// The local part's values at the owned values u: u's, then the ghosts' from their owners.
+  virtual const double* with_ghosts(const double* u) const = 0;
+  /// Scratch over the local part's dofs, zeroed; add_ghosts_to_owners() adds its ghost
+  /// entries into their owners' owned entries on the other ranks.
+  virtual double* zeroed_scratch() const = 0;
+  virtual void add_ghosts_to_owners() const = 0;
+  virtual double max(double v) const = 0;
+};
 
 /// A load at factor s in [0, 1] applies force0 + s (force - force0) and prescribes, for each
 /// constrained degree of freedom k, with the target t_k = value0[k] + s * value[k], either
@@ -37,6 +55,10 @@ struct Loading {
   bool collocated = false;
   /// For each coupling: the constraint on its dof, or -1 for a free dof (index_couplings).
   std::vector<std::int64_t> coupled_constraint;
+  /// Set on a rank's part of a distributed loading with face-located constraints (couplings
+  /// then sized on every rank, a rank without any included): impose, reduce, reactions and
+  /// multipliers exchange with the other ranks through it. Null: one process.
+  const LoadingRanks* ranks = nullptr;
   // Where a load stage starts (begin_stage); empty: from zero.
   std::vector<double> value0;  ///< the constrained values at s = 0 (m)
   std::vector<double> force0;  ///< the external force at s = 0 (N)
@@ -99,9 +121,9 @@ struct Loading {
   /// Column names in the order of reactions(): "NAME.Rx", "NAME.Ry" (, "NAME.Rz") for dpp 2
   /// or 3, "NAME.R" for one dof per particle (a plate's transverse force).
   std::vector<std::string> reaction_columns(int dpp) const;
-  /// Sets u at the constrained dofs (at time t for velocities). Face-located constraints use
-  /// the current neighbour values (one Gauss-Seidel sweep; the explicit solvers call it every
-  /// iteration, so the constraints converge with the solve).
+  /// Sets u at the constrained dofs (at time t for velocities). Face-located constraints are
+  /// solved for the constrained values given the free ones (Gauss-Seidel sweeps to rounding:
+  /// the constraints of one face read each other), so E u = t holds after every call.
   void impose(double s, double* u, double t = 0.0) const;
   /// Zeros the constrained entries of r (a residual or a velocity).
   void zero_fixed(double* r) const;
@@ -115,7 +137,7 @@ struct Loading {
   void reduce(double* r) const;
   /// Fills coupled_constraint and the scratch reduce needs.
   void index_couplings();
-  bool coupled_constraints() const { return !coupled.empty(); }
+  bool coupled_constraints() const { return !couplings.empty(); }
   /// Face-located constraints in the Galerkin form (multipliers, reduce).
   bool galerkin() const { return coupled_constraints() && !collocated; }
 

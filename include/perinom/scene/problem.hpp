@@ -76,13 +76,14 @@ CorrespondenceOptions correspondence_options(const Scene& scene);
 
 /// What every rank of a distributed run shares (issue 19): the scene's particles, its loading
 /// and bound probes, without families or a model (p.model is null). A correspondence scene of
-/// the classical or consistent formulation whose constraints are on their particles (no
-/// `at: face`): throws std::logic_error for another, which the caller refuses first. The
-/// loading's forces are the classical formulation's (at the outer layer); a consistent run
-/// takes its own from its trace (side_traction_forces).
+/// the classical or consistent formulation: throws std::logic_error for another, which the
+/// caller refuses first. The loading's face-located constraints are not coupled yet (a rank
+/// couples its own: rank_loading.hpp); its forces are the classical formulation's (at the
+/// outer layer), and a consistent run takes its own from its trace (side_traction_forces).
 Problem build_problem_frame(const Scene& scene);
 
-/// The nodal forces (trace's particles x d) of the scene's tractions, all on box sides, through
+/// The nodal forces (trace's particles x d) of the scene's tractions and pressures (small
+/// strain: they do not follow the surface), all on box sides, through
 /// a boundary trace: the consistent formulation's work-consistent facet loads, as its loading
 /// has them, on whatever cloud the trace was built on (a distributed rank's local part).
 std::vector<double> side_traction_forces(const Scene& scene, const BoundaryTrace& trace, std::size_t particles);
