@@ -93,6 +93,7 @@ void add_reaction_results(Model& model, const Loading& loading, double s, const 
   eq["reactions"] = jr;
   eq["error"] = error;
   eq["relative_to"] = std::string(over);
+  eq["scale"] = scale;  // N: the value of relative_to
   summary["equilibrium"] = eq;
 }
 

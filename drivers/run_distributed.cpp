@@ -6,6 +6,7 @@
 // piece of each snapshot. Partial, and refused otherwise, naming the key: correspondence
 // scenes of the classical or consistent formulation on a lattice (the consistent correction
 // solved over the ranks), radius families, constraints on their particles or at the face
+// (and `constraints: rigid_body`, pinned on the whole cloud)
 // (Galerkin, their multipliers solved over the ranks: Loading::ranks), tractions and
 // pressures, adr or verlet. Every rank builds the whole cloud and loading (O(N)
 // memory per rank) to choose its part.
@@ -62,7 +63,7 @@ void require_distributed(const Scene& s, const Options& opt) {
     throw InputError(s.source + ": " + key + ": " + what +
                      " is not distributed yet (mpirun -np R perinom run distributes correspondence scenes of the "
                      "classical or consistent formulation on a box, solved by adr or verlet, with constraints on their particles "
-                     "or at the face, tractions and pressures); run it without mpirun");
+                     "or at the face or rigid_body, tractions and pressures); run it without mpirun");
   };
   if (!opt.restart.empty()) refuse("--restart", "a restart");
   if (s.model.type != "correspondence") refuse("model.type", s.model.type);
@@ -74,7 +75,6 @@ void require_distributed(const Scene& s, const Options& opt) {
   if (s.model.kinematics != "small_strain") refuse("model.kinematics", s.model.kinematics);
   if (s.solver.type != "adr" && s.solver.type != "verlet") refuse("solver.type", s.solver.type);
   if (!s.stages.empty()) refuse("stages", "a load path");
-  if (s.constraints != "none") refuse("constraints", s.constraints);
   if (s.damage) refuse("damage", "bond breaking");
   if (!s.precracks.empty()) refuse("precracks", "a precrack");
   if (s.solver.check != "none") refuse("solver.check", "the " + s.solver.check + " check");
@@ -138,6 +138,7 @@ int run_distributed(const Options& opt) {
     const std::vector<double> f = side_traction_forces(scene, local_model.trace(), local.cloud.size());
     std::copy(f.begin(), f.begin() + std::ptrdiff_t(part.owned * d), loading.force.begin());
   }
+  const io::Json pins = pin_results(frame);  // printed by rank 0 only (the others' stdout is silenced)
   std::size_t owned_bonds = 0;
   for (std::size_t p = 0; p < part.owned; ++p) owned_bonds += std::size_t(families.end(p) - families.begin(p));
   const double bonds = sum_over_ranks(double(owned_bonds));
@@ -186,6 +187,11 @@ int run_distributed(const Options& opt) {
   summary["bonds"] = static_cast<long long>(bonds);
   summary["threads"] = omp_get_max_threads();
   summary["ranks"] = world.size;
+  if (!frame.pins.empty()) {
+    io::Json constraints = io::Json::object();
+    constraints["rigid_body"] = pins;
+    summary["constraints"] = constraints;
+  }
   io::Json solver = io::Json::object();
   solver["type"] = scene.solver.type;
   solver["iterations"] = static_cast<long long>(rep.iterations);

@@ -50,8 +50,9 @@ Body read_body(const Scene& s) {
 constexpr double kBalanceTolerance = 1e-8;
 
 /// constraints: rigid_body. Refuses loads that are not balanced (every stage's loads at its
-/// end), then pins the body in every loading.
-void pin_rigid_body(Problem& p, const CorrespondenceModel& model) {
+/// end), then pins the body in every loading. `layer_loads`: the tractions act at the particles
+/// (no trace), for the message.
+void pin_rigid_body(Problem& p, bool layer_loads) {
   const Scene& s = p.scene;
   std::vector<Loading*> loadings = {&p.loading};
   for (auto& st : p.stages) loadings.push_back(&st.loading);
@@ -74,7 +75,7 @@ void pin_rigid_body(Problem& p, const CorrespondenceModel& model) {
             list(r.moment.data(), d == 2 ? 1 : 3) + " N m about the centroid, against " +
             list(&r.force_scale, 1) + " N of nodal loads (rigid_body needs a body in equilibrium under its loads alone)";
     // Layer loads act at the particles: on a jittered cloud their moments need not cancel.
-    if (model.trace().empty() && s.discretization.jitter > 0.0)
+    if (layer_loads && s.discretization.jitter > 0.0)
       text += "; this formulation applies tractions at the jittered particles, whose moments need not cancel: "
               "the consistent formulation applies them at the faces";
     throw InputError(s.source + ": constraints: " + text);
@@ -206,6 +207,8 @@ Problem build_problem_frame(const Scene& s) {
   BoundaryData data{&body.facets, &p.groups, nullptr};
   FaceOf face_of;
   p.loading = make_loading(s, s.boundary, p.cloud, face_of, data);  // face-located ones uncoupled (rank_loading)
+  // The pins are chosen on the whole cloud, as a serial run chooses them.
+  if (s.constraints == "rigid_body") pin_rigid_body(p, s.model.formulation != "consistent");
   return p;
 }
 
@@ -275,7 +278,7 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
     stage_faces.emplace_back();
     p.stages.push_back({st.name, st.steps, make_loading(s, boundary, p.cloud, stage_faces.back(), data)});
   }
-  if (s.constraints == "rigid_body") pin_rigid_body(p, *model);
+  if (s.constraints == "rigid_body") pin_rigid_body(p, model->trace().empty());
   if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, model->G(), data);
   // The seed's collocation formulations keep collocated constraints (loading.hpp).
   const bool collocated = opt.formulation == Formulation::improved || opt.formulation == Formulation::strong;

@@ -74,8 +74,12 @@ def main():
                     close("probe %s row %d %s" % (name, r, column), rs[r][c], rm[r][c], scale)
         else:
             close("probe " + name, value, m["probes"][name], max(abs(value), 1e-300))
+    # Reactions against the largest, or the loads' scale when they are all rounding (a free
+    # body pinned by rigid_body); the pins themselves must be the same particles.
+    if s.get("constraints") != m.get("constraints"):
+        failures.append("constraints: %s serial, %s on %d ranks" % (s.get("constraints"), m.get("constraints"), a.ranks))
     reactions = s.get("reactions", {})
-    scale = max([abs(x) for r in reactions.values() for x in r] + [1e-300])
+    scale = max([abs(x) for r in reactions.values() for x in r] + [s.get("equilibrium", {}).get("scale", 0.0), 1e-300])
     for name, r in reactions.items():
         for c, x in enumerate(r):
             close("reaction %s[%d]" % (name, c), x, m["reactions"][name][c], scale)

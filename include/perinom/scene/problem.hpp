@@ -77,7 +77,8 @@ CorrespondenceOptions correspondence_options(const Scene& scene);
 /// What every rank of a distributed run shares (issue 19): the scene's particles, its loading
 /// and bound probes, without families or a model (p.model is null). A correspondence scene of
 /// the classical or consistent formulation: throws std::logic_error for another, which the
-/// caller refuses first. The loading's face-located constraints are not coupled yet (a rank
+/// caller refuses first. `constraints: rigid_body` pins it (p.pins) as a serial run would.
+/// The loading's face-located constraints are not coupled yet (a rank
 /// couples its own: rank_loading.hpp); its forces are the classical formulation's (at the
 /// outer layer), and a consistent run takes its own from its trace (side_traction_forces).
 Problem build_problem_frame(const Scene& scene);
