@@ -147,7 +147,7 @@ struct Loading {
   /// allocate for the capturing lambdas of the hot paths.)
   template <class RAt>
   void solve_multipliers(const RAt& r_at) const;
-  mutable std::vector<double> lambda_, sum_;  // scratch of reduce and reactions
+  mutable std::vector<double> lambda_, sum_, remote_;  // scratch of reduce and reactions
 };
 
 /// One stage of a load path: its loading (values as increments over the stage, forces as
