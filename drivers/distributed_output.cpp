@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "perinom/core/error.hpp"
 #include "perinom/io/csv_writer.hpp"
+#include "snapshot.hpp"
 
 namespace perinom::cli {
 namespace {
@@ -14,6 +16,37 @@ namespace {
 void require_finite_everywhere(bool finite, const std::string& what) {
   const double bad = max_over_ranks(finite ? 0.0 : 1.0);
   if (bad > 0.0) throw SolveError(finite ? "a value is NaN or Inf on another rank" : what);
+}
+
+/// output.csv: the snapshot's fields as one CSV in the whole cloud's order, as a serial run
+/// writes it: every rank's owned rows (the particle's index in the whole cloud, then the
+/// values) gathered on rank 0, which writes them.
+void write_gathered_csv(const std::string& path, const RankRun& run, const std::vector<io::PointField>& fields) {
+  std::size_t width = 1;
+  for (const auto& f : fields) width += std::size_t(f.components);
+  const std::size_t n = run.part.owned;
+  std::vector<double> mine;
+  mine.reserve(n * width);
+  for (std::size_t p = 0; p < n; ++p) {
+    mine.push_back(double(run.part.particles[p]));
+    for (const auto& f : fields) mine.insert(mine.end(), f.data + p * f.components, f.data + (p + 1) * f.components);
+  }
+  const std::vector<double> all = gather_on_root(mine);
+  if (run.rank != 0) return;
+  const PointCloud& cloud = run.frame.cloud;
+  if (all.size() != cloud.size() * width) throw std::logic_error("write_gathered_csv: the ranks' rows do not cover the cloud");
+  std::vector<std::vector<double>> whole(fields.size());
+  for (std::size_t k = 0; k < fields.size(); ++k) whole[k].resize(cloud.size() * std::size_t(fields[k].components));
+  for (std::size_t r = 0; r < cloud.size(); ++r) {
+    const double* row = all.data() + r * width;
+    const auto i = std::size_t(row[0]);
+    std::size_t at = 1;
+    for (std::size_t k = 0; k < fields.size(); ++k)
+      for (int c = 0; c < fields[k].components; ++c) whole[k][i * std::size_t(fields[k].components) + std::size_t(c)] = row[at++];
+  }
+  std::vector<io::PointField> in_order;
+  for (std::size_t k = 0; k < fields.size(); ++k) in_order.push_back({fields[k].name, fields[k].components, whole[k].data()});
+  write_snapshot_csv(path, cloud, in_order);
 }
 
 }  // namespace
@@ -42,6 +75,7 @@ void add_piece_snapshot(io::PvdSeries& series, double time, const RankRun& run, 
     io::write_pvtu(dir + "/" + base + ".pvtu", pieces, fields);
     series.write();
   }
+  if (run.frame.scene.output.csv) write_gathered_csv(dir + "/" + base + ".csv", run, fields);
 }
 
 io::Json distributed_probe_results(const RankRun& run, const std::vector<double>& u, const std::string& dir) {

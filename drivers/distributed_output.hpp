@@ -23,7 +23,8 @@ struct RankRun {
 };
 
 /// One snapshot at `time`: every rank writes NAME_<index>_<rank>.vtu of its owned particles,
-/// rank 0 NAME_<index>.pvtu and the .pvd. Every rank calls it. @throws SolveError on every
+/// rank 0 NAME_<index>.pvtu and the .pvd, and with output.csv NAME_<index>.csv of every
+/// particle in the whole cloud's order (the serial run's file, gathered). Every rank calls it. @throws SolveError on every
 /// rank, before writing, when a field is NaN or Inf on any.
 void add_piece_snapshot(io::PvdSeries& series, double time, const RankRun& run, const std::vector<double>& u,
                         const std::string& dir);

@@ -79,7 +79,6 @@ void require_distributed(const Scene& s, const Options& opt) {
   if (!s.precracks.empty()) refuse("precracks", "a precrack");
   if (s.solver.check != "none") refuse("solver.check", "the " + s.solver.check + " check");
   if (s.output.checkpoint_every > 0) refuse("output.checkpoint_every", "a checkpoint");
-  if (s.output.csv) refuse("output.csv", "a snapshot as CSV");
 }
 
 }  // namespace

@@ -7,26 +7,25 @@
 
 namespace perinom::cli {
 
-namespace {
-
-/// The scalar and vector fields of a snapshot as CSV: x, y, z, then each field's components.
-void write_csv(const std::string& path, const Problem& p, const std::vector<io::PointField>& fields) {
+void write_snapshot_csv(const std::string& path, const PointCloud& cloud, const std::vector<io::PointField>& fields) {
   std::vector<std::string> names = {"x", "y", "z"};
   for (const auto& f : fields)
     for (int c = 0; c < f.components; ++c)
       names.push_back(f.components == 1 ? f.name : f.name + "_" + std::to_string(c));
   io::CsvWriter csv(path);
   csv.header(names);
-  const int d = p.cloud.dim;
+  const int d = cloud.dim;
   std::vector<double> row;
-  for (std::size_t i = 0; i < p.cloud.size(); ++i) {
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
     row.assign(3, 0.0);
-    for (int a = 0; a < d; ++a) row[a] = p.cloud.x[i * d + a];
+    for (int a = 0; a < d; ++a) row[a] = cloud.x[i * d + a];
     for (const auto& f : fields) row.insert(row.end(), f.data + i * f.components, f.data + (i + 1) * f.components);
     csv.row(row);
   }
   csv.close();
 }
+
+namespace {
 
 /// The guard of every snapshot: no NaN or Inf reaches a file.
 void require_finite(const std::vector<io::PointField>& fields, std::size_t n) {
@@ -49,7 +48,7 @@ void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const st
   const std::string file = series.add(time, p.cloud.dim, n, p.cloud.x.data(), fields);
   series.write();
   if (p.scene.output.csv && !dir.empty())
-    write_csv(dir + "/" + file.substr(0, file.size() - 4) + ".csv", p, fields);
+    write_snapshot_csv(dir + "/" + file.substr(0, file.size() - 4) + ".csv", p.cloud, fields);
 }
 
 }  // namespace perinom::cli

@@ -19,4 +19,8 @@ namespace perinom::cli {
 void add_snapshot(io::PvdSeries& series, double time, const Problem& p, const std::vector<double>& u,
                   const std::string& dir = "");
 
+/// A snapshot's point data as CSV, one row per particle of `cloud`: x, y, z, then each
+/// field's components (NAME, or NAME_0, NAME_1, ... for several).
+void write_snapshot_csv(const std::string& path, const PointCloud& cloud, const std::vector<io::PointField>& fields);
+
 }  // namespace perinom::cli

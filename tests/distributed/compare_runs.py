@@ -112,6 +112,25 @@ def main():
     if len(pieces) != a.ranks or points != s["particles"]:
         failures.append("snapshot %s: %d pieces with %d points, for %d ranks and %d particles"
                         % (last, len(pieces), points, a.ranks, s["particles"]))
+    # output.csv: the final snapshot as CSV, gathered in the whole cloud's order, row by row
+    # (each column against its largest magnitude), the last of each run's series.
+    pvd_s = open(os.path.join(serial, s["name"] + ".pvd")).read()
+    csv_s = os.path.join(serial, re.findall(r'file="([^"]+)"', pvd_s)[-1][:-4] + ".csv")
+    if os.path.exists(csv_s):
+        csv_m = os.path.join(ranked, last[:-5] + ".csv")
+        if not os.path.exists(csv_m):
+            failures.append("snapshot %s: the serial run wrote it, the ranks did not" % os.path.basename(csv_m))
+        else:
+            head_s, cs = rows(csv_s)
+            head_m, cm = rows(csv_m)
+            if head_s != head_m or len(cs) != len(cm):
+                failures.append("snapshot CSV: %d rows of %s serial, %d rows of %s on the ranks"
+                                % (len(cs), head_s, len(cm), head_m))
+            else:
+                for c, column in enumerate(head_s):
+                    scale = max(max(abs(r[c]) for r in cs), 1e-300)
+                    for r in range(len(cs)):
+                        close("snapshot CSV row %d %s" % (r, column), cs[r][c], cm[r][c], scale)
     for f in failures[:20]:
         print("compare: " + f)
     print("compare: largest relative difference %.3e (tolerance %g); iterations %d serial, %d on %d ranks"
