@@ -6,9 +6,8 @@
 // piece of each snapshot. Partial, and refused otherwise, naming the key: correspondence
 // scenes of the classical or consistent formulation on a lattice (the consistent correction
 // solved over the ranks), radius families, constraints on their particles or at the face
-// (and `constraints: rigid_body`, pinned on the whole cloud)
-// (Galerkin, their multipliers solved over the ranks: Loading::ranks), tractions and
-// pressures, adr or verlet. Every rank builds the whole cloud and loading (O(N)
+// (Galerkin, their multipliers solved over the ranks: Loading::ranks), `constraints:
+// rigid_body` (pinned on the whole cloud), tractions and pressures, adr or verlet. Every rank builds the whole cloud and loading (O(N)
 // memory per rank) to choose its part.
 #include <omp.h>
 
