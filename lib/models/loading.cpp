@@ -6,7 +6,18 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "perinom/core/error.hpp"
+
 namespace perinom {
+
+void Loading::not_converged(const char* what, std::size_t k) const {
+  std::string where = "the face-located constraint on dof " + std::to_string(fixed[k]);
+  if (!support.empty() && support[k] >= 0) where += " (support '" + support_names[support[k]] + "')";
+  throw SolveError(std::string(what) + " did not converge in 200 sweeps: " + where +
+                   " changed most in the last one. The constraints of a face read each other "
+                   "too strongly for the sweeps (a face point far from its particles on a coarse "
+                   "cloud?); hold the support on its particles (at: particles) or refine");
+}
 
 void Loading::fix(std::int64_t dof, double v, int support_index, double v_rate) {
   const bool tracked = support_index >= 0 || !support.empty();
@@ -53,6 +64,7 @@ void Loading::impose(double s, double* u, double t) const {
   // when a round's first sweep changes nothing on any rank (about 10 sweeps a call, but only
   // the rounds exchange).
   const std::size_t own = ranks ? ranks->owned_dofs() : SIZE_MAX;
+  std::size_t worst = 0;
   for (int round = 0; round < 200; ++round) {
     const double* all = ranks ? ranks->with_ghosts(u) : u;
     double first = 0.0, size = 0.0;
@@ -66,16 +78,24 @@ void Loading::impose(double s, double* u, double t) const {
           sum += coef[c] * (j < own ? u[j] : all[j]);
         }
         const double next = scale[k] * (target(s, k, t) - sum);
-        change = std::max(change, std::abs(next - u[fixed[k]]));
+        const double d = std::abs(next - u[fixed[k]]);
+        if (d > change || d != d) change = d, worst = k;  // (a NaN, once in, stays)
         size = std::max(size, std::abs(next));
         u[fixed[k]] = next;
       }
+      if (!std::isfinite(change)) {  // a NaN or Inf state: the solver's guard names it
+        if (!ranks) return;
+        first = 0.0;  // (over ranks: end the rounds together)
+        break;
+      }
       if (sweep == 0) first = change;
       if (change <= 1e-15 * size) break;
+      if (sweep == 199 && !ranks) not_converged("Loading::impose", worst);
     }
     if (!ranks) return;
     if (ranks->max(first) <= 1e-15 * ranks->max(size)) return;
   }
+  not_converged("Loading::impose (over ranks)", worst);
 }
 
 double Loading::force_norm(double s) const {
@@ -150,6 +170,7 @@ void Loading::solve_multipliers(const RAt& r_at) const {
       for (Offset c = couplings[k]; c < couplings[k + 1]; ++c)
         if (coupled_constraint[c] >= 0) sum_[coupled_constraint[c]] += coef[c] * lambda_[k];
   };
+  std::size_t worst = 0;
   for (int round = 0; round < 200; ++round) {
     if (ranks) {
       double* sum = ranks->zeroed_scratch();
@@ -165,14 +186,22 @@ void Loading::solve_multipliers(const RAt& r_at) const {
       double change = 0.0;
       for (std::size_t l = 0; l < m; ++l) {
         const double next = -scale[l] * (r_at(fixed[l]) + sum_[l] + (ranks ? remote_[l] : 0.0));
-        change = std::max(change, std::abs(next - lambda_[l]));
+        const double d = std::abs(next - lambda_[l]);
+        if (d > change || d != d) change = d, worst = l;  // (a NaN, once in, stays)
         lambda_[l] = next;
+      }
+      if (!std::isfinite(change)) {  // a NaN or Inf force: the solver's guard names it
+        if (!ranks) return;
+        first = 0.0;  // (over ranks: end the rounds together)
+        break;
       }
       if (sweep == 0) first = change;
       if (change <= 1e-15 * size) break;
+      if (sweep == 199 && !ranks) not_converged("the face supports' multipliers", worst);
     }
     if (!ranks || ranks->max(first) <= 1e-15 * size) return;
   }
+  not_converged("the face supports' multipliers (over ranks)", worst);
 }
 
 void Loading::reactions(const double* fint, double s, int dpp, double* R) const {

@@ -124,6 +124,8 @@ struct Loading {
   /// Sets u at the constrained dofs (at time t for velocities). Face-located constraints are
   /// solved for the constrained values given the free ones (Gauss-Seidel sweeps to rounding:
   /// the constraints of one face read each other), so E u = t holds after every call.
+  /// Throws SolveError, naming a constraint, when 200 sweeps (or rounds over ranks) do not
+  /// converge; reduce, reactions and multipliers do the same for the multipliers.
   void impose(double s, double* u, double t = 0.0) const;
   /// Zeros the constrained entries of r (a residual or a velocity).
   void zero_fixed(double* r) const;
@@ -147,6 +149,8 @@ struct Loading {
   /// allocate for the capturing lambdas of the hot paths.)
   template <class RAt>
   void solve_multipliers(const RAt& r_at) const;
+  /// Throws SolveError: `what`'s sweeps did not converge, constraint k changing most.
+  [[noreturn]] void not_converged(const char* what, std::size_t k) const;
   mutable std::vector<double> lambda_, sum_, remote_;  // scratch of reduce and reactions
 };
 
