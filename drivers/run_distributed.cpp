@@ -4,8 +4,8 @@
 // DistributedModel (one halo exchange of u per force, the solvers' sums over the ranks).
 // Rank 0 prints and writes the history, the probes and summary.json; every rank writes its
 // piece of each snapshot. Partial, and refused otherwise, naming the key: correspondence
-// scenes of the classical or consistent formulation on a lattice (the consistent correction
-// solved over the ranks), radius families, constraints on their particles or at the face
+// scenes of the classical or consistent formulation on a lattice or a body from files (the
+// consistent correction solved over the ranks), radius families, constraints on their particles or at the face
 // (Galerkin, their multipliers solved over the ranks: Loading::ranks), `constraints:
 // rigid_body` (pinned on the whole cloud), tractions and pressures, adr or verlet. Every rank builds the whole cloud and loading (O(N)
 // memory per rank) to choose its part.
@@ -39,36 +39,18 @@
 namespace perinom::cli {
 namespace {
 
-/// The facets whose particle is one of the first `rows` (a local part's owned and near ones).
-BoundaryFacets facets_of_rows(const BoundaryFacets& all, std::size_t rows) {
-  BoundaryFacets f;
-  f.dim = all.dim;
-  const int d = all.dim;
-  for (std::size_t k = 0; k < all.size(); ++k) {
-    if (std::size_t(all.particle[k]) >= rows) continue;
-    f.particle.push_back(all.particle[k]);
-    f.area.push_back(all.area[k]);
-    f.side.push_back(all.side[k]);
-    f.normal.insert(f.normal.end(), all.normal.begin() + std::ptrdiff_t(k * d), all.normal.begin() + std::ptrdiff_t((k + 1) * d));
-    f.centroid.insert(f.centroid.end(), all.centroid.begin() + std::ptrdiff_t(k * d),
-                      all.centroid.begin() + std::ptrdiff_t((k + 1) * d));
-  }
-  return f;
-}
-
 /// Refuses, naming the key, what the distributed run does not do yet.
 void require_distributed(const Scene& s, const Options& opt) {
   auto refuse = [&](const std::string& key, const std::string& what) {
     throw InputError(s.source + ": " + key + ": " + what +
                      " is not distributed yet (mpirun -np R perinom run distributes correspondence scenes of the "
-                     "classical or consistent formulation on a box, solved by adr or verlet, with constraints on their particles "
+                     "classical or consistent formulation on a box or a body from files, solved by adr or verlet, with constraints on their particles "
                      "or at the face or rigid_body, tractions and pressures); run it without mpirun");
   };
   if (!opt.restart.empty()) refuse("--restart", "a restart");
   if (s.model.type != "correspondence") refuse("model.type", s.model.type);
   if (s.model.formulation != "classical" && s.model.formulation != "consistent")
     refuse("model.formulation", "the " + s.model.formulation + " formulation (its strong rows read the whole body)");
-  if (s.body_files.given()) refuse(s.body_files.mesh.empty() ? "geometry.points" : "geometry.mesh", "a body from files");
   if (s.discretization.horizon_neighbors > 0) refuse("discretization.horizon.neighbors", "k-nearest families");
   if (s.plasticity) refuse("material.type", "drucker_prager");
   if (s.model.kinematics != "small_strain") refuse("model.kinematics", s.model.kinematics);
@@ -123,19 +105,14 @@ int run_distributed(const Options& opt) {
   CorrespondenceOptions copt = correspondence_options(scene);
   copt.ranks = &share;
   copt.fitted_rows = part.owned + part.near;  // the far ghosts' truncated families only lend values
-  auto model = std::make_unique<CorrespondenceModel>(
-      local.cloud, families, scene.material, copt, Surface{},
-      consistent ? facets_of_rows(lattice_facets(scene.geometry, local.cloud), part.owned + part.near) : BoundaryFacets{});
+  const LocalFacets facets = local_facets(frame.facets, frame.groups, part, part.owned + part.near);
+  auto model = std::make_unique<CorrespondenceModel>(local.cloud, families, scene.material, copt, Surface{},
+                                                     consistent ? facets.facets : BoundaryFacets{});
   CorrespondenceModel& local_model = *model;
   local.model = std::move(model);
   DistributedModel distributed(local_model, part);
   const LoadingShare loading_share(part, d);
-  Loading loading = rank_loading(scene, frame, part, local.cloud, local_model, loading_share);
-  if (consistent && !loading.force.empty()) {
-    // Its tractions act at the facets through the trace: each owned particle's share.
-    const std::vector<double> f = side_traction_forces(scene, local_model.trace(), local.cloud.size());
-    std::copy(f.begin(), f.begin() + std::ptrdiff_t(part.owned * d), loading.force.begin());
-  }
+  const Loading loading = rank_loading(scene, frame, part, local.cloud, local_model, facets, loading_share);
   const io::Json pins = pin_results(frame);  // printed by rank 0 only (the others' stdout is silenced)
   std::size_t owned_bonds = 0;
   for (std::size_t p = 0; p < part.owned; ++p) owned_bonds += std::size_t(families.end(p) - families.begin(p));

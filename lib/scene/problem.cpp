@@ -177,9 +177,6 @@ Body scene_body(const Scene& s, Problem& p) {
 
 }  // namespace
 
-std::vector<double> side_traction_forces(const Scene& s, const BoundaryTrace& trace, std::size_t particles) {
-  return detail::side_traction_forces(s, trace, particles);
-}
 
 CorrespondenceOptions correspondence_options(const Scene& s) {
   CorrespondenceOptions opt;
@@ -197,12 +194,36 @@ CorrespondenceOptions correspondence_options(const Scene& s) {
   return opt;
 }
 
+namespace {
+
+/// The facets the loads and the model see: a body file's own (checked to close the body), a
+/// lattice's under the consistent formulation, else none. Sets p.facet_defect.
+BoundaryFacets body_facets(const Scene& s, const Body& body, Problem& p) {
+  const bool consistent = s.model.formulation == "consistent";
+  if (!s.body_files.given()) return consistent ? lattice_facets(s.geometry, p.cloud) : BoundaryFacets{};
+  if (!body.facets.empty()) p.facet_defect = divergence_theorem_defect(body.facets, p.cloud);
+  // A mesh's facets close it to rounding; more means elements that do not share their faces.
+  if (!s.body_files.mesh.empty() && !(p.facet_defect <= 1e-9))
+    throw InputError(s.body_files.where + ": the mesh's boundary facets do not close it (divergence theorem defect " +
+                     std::to_string(p.facet_defect) + "); is the mesh conforming?");
+  // The consistent formulation's boundary measure needs facets that close the body; an open
+  // facet file would be projected silently and the patch test lost with exit 0.
+  if (consistent && !body.facets.empty() && !(p.facet_defect <= 1e-9))
+    throw InputError(s.body_files.where + ": geometry.facets: the facets do not close the body the volumes fill "
+                     "(divergence theorem defect " + std::to_string(p.facet_defect) +
+                     "), which the consistent formulation needs; complete them, or use formulation classical");
+  return body.facets;
+}
+
+}  // namespace
+
 Problem build_problem_frame(const Scene& s) {
   if (s.model.type != "correspondence" || (s.model.formulation != "classical" && s.model.formulation != "consistent"))
     throw std::logic_error("build_problem_frame: a correspondence scene of the classical or consistent formulation only");
   Problem p;
   p.scene = s;
   const Body body = scene_body(s, p);
+  p.facets = body_facets(s, body, p);
   for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
   BoundaryData data{&body.facets, &p.groups, nullptr};
   FaceOf face_of;
@@ -225,23 +246,7 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   if (timer) timer->start("operators");
   const CorrespondenceOptions opt = correspondence_options(s);
   Surface surface;
-  BoundaryFacets facets;
-  if (s.body_files.given()) {
-    facets = body.facets;
-    if (!facets.empty()) p.facet_defect = divergence_theorem_defect(facets, p.cloud);
-    // A mesh's facets close it to rounding; more means elements that do not share their faces.
-    if (!s.body_files.mesh.empty() && !(p.facet_defect <= 1e-9))
-      throw InputError(s.body_files.where + ": the mesh's boundary facets do not close it (divergence theorem defect " +
-                       std::to_string(p.facet_defect) + "); is the mesh conforming?");
-    // The consistent formulation's boundary measure needs facets that close the body; an open
-    // facet file would be projected silently and the patch test lost with exit 0.
-    if (opt.formulation == Formulation::consistent && !facets.empty() && !(p.facet_defect <= 1e-9))
-      throw InputError(s.body_files.where + ": geometry.facets: the facets do not close the body the volumes fill "
-                       "(divergence theorem defect " + std::to_string(p.facet_defect) +
-                       "), which the consistent formulation needs; complete them, or use formulation classical");
-  } else if (opt.formulation == Formulation::consistent) {
-    facets = lattice_facets(s.geometry, p.cloud);
-  }
+  BoundaryFacets facets = body_facets(s, body, p);
   if (opt.formulation != Formulation::classical && opt.formulation != Formulation::consistent) {
     // E: within 2 delta of the surface (THEORY sec. 5); the strong form makes E everything.
     const double delta = *std::max_element(families.support.begin(), families.support.end());

@@ -124,13 +124,21 @@ Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, 
   return load;
 }
 
-std::vector<double> side_traction_forces(const Scene& s, const BoundaryTrace& trace, std::size_t particles) {
+std::vector<double> trace_forces(const Scene& s, const BoundaryTrace& trace, const std::vector<FacetGroup>& groups,
+                                 std::size_t particles) {
   std::vector<double> force(particles * s.dim, 0.0);
   if (trace.empty()) return force;  // a local part with no facet: no traction reaches it
+  const BoundaryData data{&trace.facets(), &groups, &trace};
   for (const auto& b : s.boundary) {
     if (!b.traction && !b.pressure) continue;
-    if (b.region.is_group())
-      throw std::logic_error("side_traction_forces: " + b.where + ": a group's traction (a body from files)");
+    if (b.region.is_group()) {
+      // (A rank's share of a group may be empty: the whole body's loading found it.)
+      const FacetGroup* group = find_group(groups, b.region.group);
+      if (!group) throw std::logic_error("trace_forces: " + b.where + ": no group '" + b.region.group + "'");
+      const double zero[3] = {0, 0, 0};
+      add_group_traction(*group, b.traction ? b.traction->data() : zero, b.pressure.value_or(0.0), data, force);
+      continue;
+    }
     const auto t = side_load(b.region.side, b.traction, b.pressure.value_or(0.0), s.dim);
     add_side_traction(b.region.side, {}, t.data(), PointCloud{}, &trace, force);
   }

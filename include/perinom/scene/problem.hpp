@@ -45,6 +45,10 @@ struct Problem {
   std::size_t mesh_elements = 0;
   double mean_size = 0.0;
   double facet_defect = 0.0;
+  /// build_problem_frame only (the ranks' parts take their share): the boundary facets, by
+  /// particle of the whole cloud, that the loads and the consistent formulation see (a body
+  /// from files: its own; a lattice: lattice_facets under the consistent formulation).
+  BoundaryFacets facets;
 
   TangentModel& physics() { return *model; }
   const TangentModel& physics() const { return *model; }
@@ -80,14 +84,9 @@ CorrespondenceOptions correspondence_options(const Scene& scene);
 /// caller refuses first. `constraints: rigid_body` pins it (p.pins) as a serial run would.
 /// The loading's face-located constraints are not coupled yet (a rank
 /// couples its own: rank_loading.hpp); its forces are the classical formulation's (at the
-/// outer layer), and a consistent run takes its own from its trace (side_traction_forces).
+/// outer layer), and a consistent run takes its own from its trace (rank_loading.hpp). A body
+/// from files keeps its facets (p.facets) for the ranks' shares.
 Problem build_problem_frame(const Scene& scene);
-
-/// The nodal forces (trace's particles x d) of the scene's tractions and pressures (small
-/// strain: they do not follow the surface), all on box sides, through
-/// a boundary trace: the consistent formulation's work-consistent facet loads, as its loading
-/// has them, on whatever cloud the trace was built on (a distributed rank's local part).
-std::vector<double> side_traction_forces(const Scene& scene, const BoundaryTrace& trace, std::size_t particles);
 
 /// Builds the problem (lattice, families, operators, loading, probes) by the model registry's
 /// row of model.type (registry.cpp). Phases are timed

@@ -1,5 +1,6 @@
 #pragma once
 /// @file A distributed rank's loading from its scene (issue 19).
+#include "perinom/distributed/local_facets.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/models/loading.hpp"
 #include "perinom/neighbors/local_part.hpp"
@@ -8,12 +9,14 @@
 namespace perinom {
 
 /// The loading of `part`'s owned particles (`local_cloud`: the part's particles, its model's):
-/// the scene's boundary items as they select on the
-/// whole cloud (`frame`, build_problem_frame's), on the owned dofs (local_loading), with the
-/// face-located constraints (`at: face`) coupled as a serial run couples them, through the
-/// part's model `local` (whose owned rows of G and of the trace are the whole body's), and
-/// exchanging over `ranks`, which must outlive the loading. Its forces are the frame's.
+/// the scene's boundary items as they select on the whole cloud (`frame`,
+/// build_problem_frame's), on the owned dofs (local_loading), with the face-located
+/// constraints (`at: face`) coupled as a serial run couples them, through the part's model
+/// `local` (whose owned rows of G and of the trace are the whole body's) and `facets` (the
+/// part's share of frame.facets and frame.groups, the trace's facets when it has one), and
+/// exchanging over `ranks`, which must outlive the loading. Its forces are the frame's, or,
+/// with a trace (the consistent formulation), the trace's work-consistent facet loads.
 Loading rank_loading(const Scene& scene, const Problem& frame, const LocalPart& part, const PointCloud& local_cloud,
-                     const CorrespondenceModel& local, const LoadingRanks& ranks);
+                     const CorrespondenceModel& local, const LocalFacets& facets, const LoadingRanks& ranks);
 
 }  // namespace perinom
