@@ -177,7 +177,6 @@ Body scene_body(const Scene& s, Problem& p) {
 
 }  // namespace
 
-
 CorrespondenceOptions correspondence_options(const Scene& s) {
   CorrespondenceOptions opt;
   opt.influence = s.discretization.weight;
