@@ -15,31 +15,8 @@
 namespace perinom::cli {
 namespace {
 
-constexpr int kProbeColumns = 5;  // value, von_mises, mean_stress, equivalent_strain, eq_plastic_strain
+constexpr int kProbeColumns = ProbeHistory::probe_columns;  // value, von_mises, mean_stress, equivalent_strain, eq_plastic_strain
 constexpr int kStepColumns = 3;   // stage, step, load_factor
-// A load step that takes longer than this (a cascade of breaks, a hard balance) says so
-// every this many seconds, so a run that spends minutes in one step is seen to be alive.
-constexpr double kQuietSeconds = 10.0;
-
-/// Lines within a long load step; quiet while the steps' own lines come often enough.
-class StepProgress : public Progress {
- public:
-  void update(const ProgressSample& s) override {
-    const double now = wall_seconds();
-    if (now - last_line_ < kQuietSeconds) return;
-    std::printf("  ... load step %d/%d still balancing: %lld iterations in it, residual %.3e (target %.1e), %.0f s\n",
-                s.load_step, s.load_steps, static_cast<long long>(s.iteration), s.residual, s.target,
-                now - step_start_);
-    std::fflush(stdout);
-    last_line_ = now;
-  }
-  /// A step's own line was printed: the next step starts.
-  void step_done() { last_line_ = step_start_ = wall_seconds(); }
-
- private:
-  double last_line_ = wall_seconds(), step_start_ = last_line_;
-};
-
 std::vector<const BoundProbe*> point_probes(const Problem& p) {
   std::vector<const BoundProbe*> out;
   for (const auto& probe : p.probes)
@@ -49,18 +26,63 @@ std::vector<const BoundProbe*> point_probes(const Problem& p) {
 
 }  // namespace
 
+void StepProgress::update(const ProgressSample& s) {
+  constexpr double quiet_seconds = 10.0;
+  const double now = wall_seconds();
+  if (now - last_line_ < quiet_seconds) return;
+  std::printf("  ... load step %d/%d still balancing: %lld iterations in it, residual %.3e (target %.1e), %.0f s\n",
+              s.load_step, s.load_steps, static_cast<long long>(s.iteration), s.residual, s.target, now - step_start_);
+  std::fflush(stdout);
+  last_line_ = now;
+}
+
+void add_probe_values(const ProbeReadout& readout, const BoundProbe& probe, double* out) {
+  const std::size_t i = probe.particles.at(0);
+  out[0] = readout.point(probe);
+  int k = 1;
+  for (const char* field : {"von_mises", "mean_stress", "equivalent_strain", "eq_plastic_strain"})
+    out[k++] = readout.scalar(field, i);
+}
+
+std::vector<double> ProbeHistory::step_columns(const LoadStepRecord& r) {
+  return {double(r.stage), double(r.step), r.load_factor};
+}
+
 void ProbeHistory::record(const Problem& p, const LoadStepRecord& r, const std::vector<double>& u) {
   const auto probes = point_probes(p);
   if (probes.empty()) return;
   const ProbeReadout readout(p, u);
-  std::vector<double> row = {double(r.stage), double(r.step), r.load_factor};
-  for (const BoundProbe* probe : probes) {
-    const std::size_t i = probe->particles.at(0);
-    row.push_back(readout.point(*probe));
-    for (const char* field : {"von_mises", "mean_stress", "equivalent_strain", "eq_plastic_strain"})
-      row.push_back(readout.scalar(field, i));
-  }
+  std::vector<double> row = step_columns(r);
+  row.resize(kStepColumns + probes.size() * kProbeColumns);
+  for (std::size_t k = 0; k < probes.size(); ++k) add_probe_values(readout, *probes[k], row.data() + kStepColumns + k * kProbeColumns);
   rows.push_back(row);
+}
+
+void print_load_path_plan(const Scene& scene, const std::vector<LoadStage>& stages, const LoadPathOptions& opt) {
+  int total = 0;
+  for (const auto& st : stages) total += st.steps;
+  std::printf("perinom: %zu stage(s), %d load steps, %s\n", stages.size(), total,
+              opt.scheme == LoadPathScheme::lbc ? "loading-balance-correction"
+              : opt.scheme == LoadPathScheme::newton ? "Newton with the consistent tangent"
+              : scene.plasticity                     ? "plain ADR, plastic update in every iteration"
+                                                     : "ADR");
+  std::printf("  %5s %5s %6s %10s %6s %8s %8s %8s %10s %8s%s\n", "stage", "step", "factor", "iterations",
+              "rounds", "flagged", "yielding", "plastic", "residual", "seconds", scene.damage ? "   broken" : "");
+}
+
+void print_load_step(const Scene& scene, const LoadStepRecord& r) {
+  std::printf("  %5d %5d %6.3f %10lld %6d %8zu %8zu %8zu %10.3e %8.3f", r.stage, r.step, r.load_factor,
+              static_cast<long long>(r.iterations), r.rounds, r.newly_flagged, r.yielding, r.plastic,
+              r.residual, r.seconds);
+  if (scene.damage) std::printf(" %8zu", r.broken);
+  std::printf("\n");
+  std::fflush(stdout);
+}
+
+bool snapshot_due(const Scene& scene, std::int64_t done) {
+  const auto& want = scene.output.vtk_steps;
+  return std::find(want.begin(), want.end(), done) != want.end() ||
+         (scene.output.vtk_every > 0 && done % scene.output.vtk_every == 0);
 }
 
 void ProbeHistory::write(const Problem& p, const std::string& dir) const {
@@ -83,17 +105,7 @@ SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double
                           std::int64_t& last_snapshot, const Checkpoints<LoadPathState>& checkpoints,
                           const LoadPathState* resume) {
   const Scene& scene = p.scene;
-  const LoadPathOptions opt = load_path_options(scene.solver);
-  int total = 0;
-  for (const auto& st : p.stages) total += st.steps;
-  std::printf("perinom: %zu stage(s), %d load steps, %s\n", p.stages.size(), total,
-              opt.scheme == LoadPathScheme::lbc ? "loading-balance-correction"
-              : opt.scheme == LoadPathScheme::newton ? "Newton with the consistent tangent"
-              : scene.plasticity                     ? "plain ADR, plastic update in every iteration"
-                                                     : "ADR");
-  const bool breaking = scene.damage.has_value();
-  std::printf("  %5s %5s %6s %10s %6s %8s %8s %8s %10s %8s%s\n", "stage", "step", "factor", "iterations",
-              "rounds", "flagged", "yielding", "plastic", "residual", "seconds", breaking ? "   broken" : "");
+  print_load_path_plan(scene, p.stages, load_path_options(scene.solver));
   std::int64_t done = resume ? steps_done(*resume, p.stages) : 0;  // load steps over all stages
   TableClock tables;
   StepProgress progress;
@@ -106,17 +118,9 @@ SolveReport run_load_path(Problem& p, const std::string& dir, std::vector<double
       probes.write(p, dir);
       tables.wrote(started);
     }
-    std::printf("  %5d %5d %6.3f %10lld %6d %8zu %8zu %8zu %10.3e %8.3f", r.stage, r.step, r.load_factor,
-                static_cast<long long>(r.iterations), r.rounds, r.newly_flagged, r.yielding, r.plastic,
-                r.residual, r.seconds);
-    if (breaking) std::printf(" %8zu", r.broken);
-    std::printf("\n");
-    std::fflush(stdout);
+    print_load_step(scene, r);
     progress.step_done();
-    const auto& want = scene.output.vtk_steps;
-    const bool listed = std::find(want.begin(), want.end(), done) != want.end();
-    const bool periodic = scene.output.vtk_every > 0 && done % scene.output.vtk_every == 0;
-    if (listed || periodic) {
+    if (snapshot_due(scene, done)) {
       add_snapshot(series, double(done), p, u, dir);
       last_snapshot = done;
     }

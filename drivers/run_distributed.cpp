@@ -1,14 +1,16 @@
 // mpirun -np R perinom run SCENE (issue 19). The particles are split into R blocks along the
 // Morton curve; each rank builds the families and operators of its local part (owned, then
-// the ghosts within two horizons) and runs the serial ADR or Verlet on its owned dofs through
-// DistributedModel (one halo exchange of u per force, the solvers' sums over the ranks).
+// the ghosts within two horizons) and runs the serial ADR, Verlet or load path (stages, LBC)
+// on its owned dofs through DistributedModel (one halo exchange of u per force, the solvers'
+// sums over the ranks, a plastic law's states shared with the ghosts after each commit).
 // Rank 0 prints and writes the history, the probes and summary.json; every rank writes its
 // piece of each snapshot. Partial, and refused otherwise, naming the key: correspondence
 // scenes of the classical or consistent formulation on a lattice or a body from files (the
-// consistent correction solved over the ranks), radius families, constraints on their particles or at the face
-// (Galerkin, their multipliers solved over the ranks: Loading::ranks), `constraints:
-// rigid_body` (pinned on the whole cloud), tractions and pressures, adr or verlet. Every rank builds the whole cloud and loading (O(N)
-// memory per rank) to choose its part.
+// consistent correction solved over the ranks), radius families, small strain, elastic or
+// Drucker-Prager, constraints on their particles or at the face (Galerkin, their multipliers
+// solved over the ranks: Loading::ranks), `constraints: rigid_body` (pinned on the whole
+// cloud), tractions and pressures, adr, verlet, or a load path by adr or lbc. Every rank
+// builds the whole cloud and loading (O(N) memory per rank) to choose its part.
 #include <omp.h>
 
 #include <algorithm>
@@ -31,6 +33,7 @@
 #include "perinom/scene/registry.hpp"
 #include "perinom/solvers/adr.hpp"
 #include "perinom/solvers/verlet.hpp"
+#include "rank_load_path.hpp"
 #include "rank_memory.hpp"
 #include "reactions_output.hpp"
 #include "run_output.hpp"
@@ -44,18 +47,18 @@ void require_distributed(const Scene& s, const Options& opt) {
   auto refuse = [&](const std::string& key, const std::string& what) {
     throw InputError(s.source + ": " + key + ": " + what +
                      " is not distributed yet (mpirun -np R perinom run distributes correspondence scenes of the "
-                     "classical or consistent formulation on a box or a body from files, solved by adr or verlet, with constraints on their particles "
-                     "or at the face or rigid_body, tractions and pressures); run it without mpirun");
+                     "classical or consistent formulation on a box or a body from files, elastic or drucker_prager at "
+                     "small strain, solved by adr or verlet, or in load steps and stages by adr or lbc, with constraints "
+                     "on their particles or at the face or rigid_body, tractions and pressures); run it without mpirun");
   };
   if (!opt.restart.empty()) refuse("--restart", "a restart");
   if (s.model.type != "correspondence") refuse("model.type", s.model.type);
   if (s.model.formulation != "classical" && s.model.formulation != "consistent")
     refuse("model.formulation", "the " + s.model.formulation + " formulation (its strong rows read the whole body)");
   if (s.discretization.horizon_neighbors > 0) refuse("discretization.horizon.neighbors", "k-nearest families");
-  if (s.plasticity) refuse("material.type", "drucker_prager");
   if (s.model.kinematics != "small_strain") refuse("model.kinematics", s.model.kinematics);
-  if (s.solver.type != "adr" && s.solver.type != "verlet") refuse("solver.type", s.solver.type);
-  if (!s.stages.empty()) refuse("stages", "a load path");
+  if (s.solver.type != "adr" && s.solver.type != "verlet" && !(s.solver.type == "lbc" && s.load_path()))
+    refuse("solver.type", s.solver.type);
   if (s.damage) refuse("damage", "bond breaking");
   if (!s.precracks.empty()) refuse("precracks", "a precrack");
   if (s.solver.check != "none") refuse("solver.check", "the " + s.solver.check + " check");
@@ -112,7 +115,13 @@ int run_distributed(const Options& opt) {
   local.model = std::move(model);
   DistributedModel distributed(local_model, part);
   const LoadingShare loading_share(part, d);
-  const Loading loading = rank_loading(scene, frame, part, local.cloud, local_model, facets, loading_share);
+  const Loading loading =
+      rank_loading(scene, scene.boundary, frame.loading, frame, part, local.cloud, local_model, facets, loading_share);
+  std::vector<LoadStage> stages;  // a load path's, each stage's items coupled as `loading`'s
+  for (std::size_t k = 0; k < frame.stages.size(); ++k)
+    stages.push_back({frame.stages[k].name, frame.stages[k].steps,
+                      rank_loading(scene, stage_boundary(scene, k), frame.stages[k].loading, frame, part, local.cloud,
+                                   local_model, facets, loading_share)});
   const io::Json pins = pin_results(frame);  // printed by rank 0 only (the others' stdout is silenced)
   std::size_t owned_bonds = 0;
   for (std::size_t p = 0; p < part.owned; ++p) owned_bonds += std::size_t(families.end(p) - families.begin(p));
@@ -136,22 +145,32 @@ int run_distributed(const Options& opt) {
   if (root) progress.emplace(scene.solver.type.c_str());
   Progress* shown = progress ? &*progress : nullptr;
   std::vector<double> u(distributed.dofs(), 0.0), v;
+  ProbeHistory probe_history;
   timer.start("solve");
-  const SolveReport rep = dynamic ? solve_verlet(distributed, loading, verlet_options(scene.solver), u, v, shown, observe)
-                                  : solve_adr(distributed, loading, adr_options(scene.solver), u, shown, observe);
+  const SolveReport rep =
+      scene.load_path() ? run_rank_load_path(run, distributed, stages, dir, u, series, probe_history, last_snapshot)
+      : dynamic         ? solve_verlet(distributed, loading, verlet_options(scene.solver), u, v, shown, observe)
+                        : solve_adr(distributed, loading, adr_options(scene.solver), u, shown, observe);
+  const std::int64_t steps_done = std::int64_t(rep.history.rows());  // a load path's
 
   // The final state, the history and the summary (rank 0).
   timer.start("output");
   std::string final_state_error;
   io::Json probes;
   try {
-    if (last_snapshot != rep.iterations) add_piece_snapshot(series, dynamic ? rep.end_time : double(rep.iterations), run, u, dir);
+    if (scene.load_path()) {
+      if (last_snapshot != steps_done || (!rep.failure.empty() && !rep.diverged))
+        add_piece_snapshot(series, double(steps_done), run, u, dir);
+      if (root) probe_history.write(frame, dir);
+    } else if (last_snapshot != rep.iterations) {
+      add_piece_snapshot(series, dynamic ? rep.end_time : double(rep.iterations), run, u, dir);
+    }
     probes = distributed_probe_results(run, u, dir);
   } catch (const SolveError& e) {
     final_state_error = e.what();
     std::fprintf(stderr, "perinom: the final state is not written: %s\n", e.what());
   }
-  if (root) write_history(dir + "/history.csv", rep.history);
+  if (root) write_history(dir + (scene.load_path() ? "/load_steps.csv" : "/history.csv"), rep.history);
   const bool converged = rep.failure.empty() && rep.converged && final_state_error.empty();
   io::Json summary = io::Json::object();
   summary["status"] = rep.diverged || !final_state_error.empty() ? "diverged" : converged ? "converged" : "not_converged";
@@ -173,6 +192,7 @@ int run_distributed(const Options& opt) {
   solver["converged"] = converged;
   solver["residual"] = rep.residual;
   solver["displacement_change"] = rep.displacement_change;
+  if (scene.load_path()) solver["load_steps"] = static_cast<long long>(steps_done);
   if (dynamic) {
     solver["stable_time_step"] = rep.stable_time_step;
     solver["end_time"] = rep.end_time;
@@ -180,14 +200,14 @@ int run_distributed(const Options& opt) {
   }
   if (rep.diverged) {
     solver["diverged_at"] = static_cast<long long>(rep.diverged_at);
-    solver["last_good"] = static_cast<long long>(rep.iterations);
+    solver["last_good"] = static_cast<long long>(scene.load_path() ? steps_done : rep.iterations);
   }
   if (!rep.failure.empty()) solver["error"] = rep.failure;
   if (!final_state_error.empty()) solver["final_state_error"] = final_state_error;
   summary["solver"] = solver;
   if (rep.failure.empty()) {
     const double s_end = dynamic && scene.solver.ramp_time > 0.0 ? std::min(1.0, rep.end_time / scene.solver.ramp_time) : 1.0;
-    add_reaction_results(distributed, loading, s_end, u, dynamic, summary);
+    add_reaction_results(distributed, scene.load_path() ? stages.back().loading : loading, s_end, u, dynamic, summary);
   }
   summary["probes"] = probes;
   timer.stop();
@@ -203,10 +223,19 @@ int run_distributed(const Options& opt) {
   barrier();
 
   if (!final_state_error.empty() && rep.failure.empty()) throw SolveError(final_state_error);
+  // As a serial run: a load step that did not balance leaves the path not converged (exit 1).
+  if (!rep.failure.empty() && scene.load_path() && !rep.diverged) {
+    std::fprintf(stderr, "perinom: NOT converged: %s; the last balanced state and results in %s\n", rep.failure.c_str(),
+                 dir.c_str());
+    return 1;
+  }
   if (!rep.failure.empty()) throw SolveError(rep.failure + "; results in " + dir);
   if (dynamic)
     std::printf("perinom: %lld steps to t = %.6e s (stable step %.3e s) on %d ranks; results in %s\n",
                 static_cast<long long>(rep.iterations), rep.end_time, rep.stable_time_step, world.size, dir.c_str());
+  else if (scene.load_path())
+    std::printf("perinom: %lld load steps, %lld ADR iterations in all on %d ranks; results in %s\n",
+                static_cast<long long>(steps_done), static_cast<long long>(rep.iterations), world.size, dir.c_str());
   else
     std::printf("perinom: %s after %lld iterations (residual %.3e) on %d ranks; results in %s\n",
                 rep.converged ? "converged" : "NOT converged", static_cast<long long>(rep.iterations), rep.residual,

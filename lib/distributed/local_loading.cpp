@@ -6,9 +6,10 @@ namespace perinom {
 
 Loading local_loading(const Loading& whole, const LocalPart& part, int d) {
   if (whole.coupled_constraints())
-    throw std::invalid_argument("local_loading: face-located constraints are not distributed");
+    throw std::invalid_argument("local_loading: the whole loading's face-located constraints are coupled already "
+                                "(rank_loading couples each rank's own)");
   if (!whole.value0.empty() || !whole.force0.empty())
-    throw std::invalid_argument("local_loading: load stages are not distributed");
+    throw std::invalid_argument("local_loading: the whole loading has begun a stage (each rank's loading begins its own)");
   const auto owned = owned_index(part);
   Loading mine;
   mine.support_names = whole.support_names;

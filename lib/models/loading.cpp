@@ -107,13 +107,15 @@ double Loading::force_norm(double s) const {
 }
 
 void Loading::begin_stage(const Loading* previous, const double* u) {
-  if (ranks) throw std::logic_error("Loading::begin_stage: load stages are not distributed");
+  // Distributed, a face constraint reads ghost dofs (every rank exchanges: couplings are
+  // sized on every rank of a loading with face constraints).
+  const double* x = ranks && coupled_constraints() ? ranks->with_ghosts(u) : u;
   value0.assign(fixed.size(), 0.0);
   for (std::size_t k = 0; k < fixed.size(); ++k) {
-    double v = u[fixed[k]];
+    double v = x[fixed[k]];
     if (coupled_constraints()) {
       v /= scale[k];
-      for (Offset c = couplings[k]; c < couplings[k + 1]; ++c) v += coef[c] * u[coupled[c]];
+      for (Offset c = couplings[k]; c < couplings[k + 1]; ++c) v += coef[c] * x[coupled[c]];
     }
     value0[k] = v;
   }

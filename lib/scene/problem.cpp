@@ -214,7 +214,25 @@ BoundaryFacets body_facets(const Scene& s, const Body& body, Problem& p) {
   return body.facets;
 }
 
+/// p.stages of a load path, from p.loading (the scene's own items) and the scene's stages,
+/// with their face-located constraints in faces (one per stage).
+void add_stages(Problem& p, const BoundaryData& data, std::vector<FaceOf>& faces) {
+  const Scene& s = p.scene;
+  for (std::size_t k = 0; k < s.stages.size() || (k == 0 && s.load_path()); ++k) {
+    faces.emplace_back();
+    const std::string name = s.stages.empty() ? "load" : s.stages[k].name;
+    const int steps = s.stages.empty() ? s.solver.load_steps : s.stages[k].steps;
+    p.stages.push_back({name, steps, make_loading(s, stage_boundary(s, k), p.cloud, faces.back(), data)});
+  }
+}
+
 }  // namespace
+
+std::vector<BoundarySpec> stage_boundary(const Scene& s, std::size_t k) {
+  std::vector<BoundarySpec> boundary = s.boundary;
+  if (k < s.stages.size()) boundary.insert(boundary.end(), s.stages[k].boundary.begin(), s.stages[k].boundary.end());
+  return boundary;
+}
 
 Problem build_problem_frame(const Scene& s) {
   if (s.model.type != "correspondence" || (s.model.formulation != "classical" && s.model.formulation != "consistent"))
@@ -227,6 +245,8 @@ Problem build_problem_frame(const Scene& s) {
   BoundaryData data{&body.facets, &p.groups, nullptr};
   FaceOf face_of;
   p.loading = make_loading(s, s.boundary, p.cloud, face_of, data);  // face-located ones uncoupled (rank_loading)
+  std::vector<FaceOf> stage_faces;
+  add_stages(p, data, stage_faces);
   // The pins are chosen on the whole cloud, as a serial run chooses them.
   if (s.constraints == "rigid_body") pin_rigid_body(p, s.model.formulation != "consistent");
   return p;
@@ -272,16 +292,7 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   FaceOf face_of;
   p.loading = make_loading(s, s.boundary, p.cloud, face_of, data);
   std::vector<FaceOf> stage_faces;
-  if (s.load_path() && s.stages.empty()) {
-    p.stages.push_back({"load", s.solver.load_steps, p.loading});
-    stage_faces.push_back(face_of);
-  }
-  for (const auto& st : s.stages) {
-    std::vector<BoundarySpec> boundary = s.boundary;
-    boundary.insert(boundary.end(), st.boundary.begin(), st.boundary.end());
-    stage_faces.emplace_back();
-    p.stages.push_back({st.name, st.steps, make_loading(s, boundary, p.cloud, stage_faces.back(), data)});
-  }
+  add_stages(p, data, stage_faces);
   if (s.constraints == "rigid_body") pin_rigid_body(p, model->trace().empty());
   if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, model->G(), data);
   // The seed's collocation formulations keep collocated constraints (loading.hpp).

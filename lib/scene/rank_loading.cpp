@@ -7,21 +7,22 @@
 
 namespace perinom {
 
-Loading rank_loading(const Scene& s, const Problem& frame, const LocalPart& part, const PointCloud& local_cloud,
-                     const CorrespondenceModel& local, const LocalFacets& facets, const LoadingRanks& ranks) {
+Loading rank_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, const Loading& whole, const Problem& frame,
+                     const LocalPart& part, const PointCloud& local_cloud, const CorrespondenceModel& local,
+                     const LocalFacets& facets, const LoadingRanks& ranks) {
   const int d = frame.cloud.dim;
-  Loading mine = local_loading(frame.loading, part, d);
+  Loading mine = local_loading(whole, part, d);
   const BoundaryTrace& trace = local.trace();
   if (!trace.empty() && !mine.force.empty()) {
     // The consistent formulation's tractions act at the facets through the trace: each owned
     // particle's share (facets of near ghosts reach owned particles too).
-    const std::vector<double> f = detail::trace_forces(s, trace, facets.groups, local_cloud.size());
+    const std::vector<double> f = detail::trace_forces(s, boundary, trace, facets.groups, local_cloud.size());
     std::copy(f.begin(), f.begin() + std::ptrdiff_t(part.owned * d), mine.force.begin());
   }
   // Which constraints are face-located, by their dofs in the whole cloud (the frame keeps
   // only its loading): the same selection again, O(N).
   detail::FaceOf whole_faces;
-  detail::make_loading(s, s.boundary, frame.cloud, whole_faces, detail::BoundaryData{&frame.facets, &frame.groups, nullptr});
+  detail::make_loading(s, boundary, frame.cloud, whole_faces, detail::BoundaryData{&frame.facets, &frame.groups, nullptr});
   if (whole_faces.empty()) return mine;
   // Every rank couples (a rank without face constraints too): the exchanges are collective.
   const auto owned = owned_index(part);

@@ -124,12 +124,12 @@ Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, 
   return load;
 }
 
-std::vector<double> trace_forces(const Scene& s, const BoundaryTrace& trace, const std::vector<FacetGroup>& groups,
-                                 std::size_t particles) {
+std::vector<double> trace_forces(const Scene& s, const std::vector<BoundarySpec>& boundary, const BoundaryTrace& trace,
+                                 const std::vector<FacetGroup>& groups, std::size_t particles) {
   std::vector<double> force(particles * s.dim, 0.0);
   if (trace.empty()) return force;  // a local part with no facet: no traction reaches it
   const BoundaryData data{&trace.facets(), &groups, &trace};
-  for (const auto& b : s.boundary) {
+  for (const auto& b : boundary) {
     if (!b.traction && !b.pressure) continue;
     if (b.region.is_group()) {
       // (A rank's share of a group may be empty: the whole body's loading found it.)

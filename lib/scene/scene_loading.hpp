@@ -37,13 +37,13 @@ struct BoundaryData {
 Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, const PointCloud& cloud,
                      FaceOf& face_of, const BoundaryData& data);
 
-/// The nodal forces (particles x d) of the tractions and pressures in `s.boundary` (small
+/// The nodal forces (particles x d) of the tractions and pressures in `boundary` (small
 /// strain: they do not follow the surface), on box sides or on `groups` (facet indices into
 /// the trace's facets), through `trace`: the consistent formulation's work-consistent facet
 /// loads, as its loading has them, on whatever cloud the trace was built on (a distributed
 /// rank's local part, whose groups may be empty there).
-std::vector<double> trace_forces(const Scene& s, const BoundaryTrace& trace, const std::vector<FacetGroup>& groups,
-                                 std::size_t particles);
+std::vector<double> trace_forces(const Scene& s, const std::vector<BoundarySpec>& boundary, const BoundaryTrace& trace,
+                                 const std::vector<FacetGroup>& groups, std::size_t particles);
 
 /// Face-located constraints: u_i + (grad u)_i . r = u_bar with r from the particle to the point
 /// on its face, i.e. u_i (1 - sum_j c_j) + sum_j c_j u_j = u_bar with c_j = g_ij . r. With a trace

@@ -13,19 +13,21 @@ namespace perinom {
 namespace {
 
 // xi of every particle (empty for an elastic model).
-std::vector<double> plastic_strains(const TangentModel& model) {
+std::vector<double> plastic_strains(const Model& model) {
   const ModelHistory* h = model.history();
   return h ? h->history_variable() : std::vector<double>{};
 }
 
-void count_plastic(const TangentModel& model, const std::vector<double>& xi_before,
+void count_plastic(const Model& model, const std::vector<double>& xi_before,
                    LoadStepRecord& r) {
   const auto xi = plastic_strains(model);
-  r.yielding = r.plastic = 0;
+  double count[2] = {0.0, 0.0};  // yielding, plastic
   for (std::size_t i = 0; i < xi.size(); ++i) {
-    r.yielding += xi[i] > xi_before[i];
-    r.plastic += xi[i] > 0.0;
+    count[0] += xi[i] > xi_before[i] ? 1.0 : 0.0;
+    count[1] += xi[i] > 0.0 ? 1.0 : 0.0;
   }
+  model.sum_across_ranks(count, 2);  // (over ranks: each counts its own particles)
+  r.yielding = std::size_t(count[0]), r.plastic = std::size_t(count[1]);
 }
 
 std::string where(const LoadStage& stage, int k, int step) {
@@ -42,7 +44,7 @@ bool parse_load_path_scheme(const std::string& type, LoadPathScheme& s) {
   return true;
 }
 
-SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
+SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
                             const LoadPathOptions& opt, std::vector<double>& u, Progress* progress,
                             const std::function<void(const LoadStepRecord&, const std::vector<double>&)>&
                                 after_step,
@@ -130,6 +132,7 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
       model.internal_force(u.data(), fint.data());
       stage_reactions.resize(loading.support_names.size() * d);
       loading.reactions(fint.data(), r.load_factor, d, stage_reactions.data());
+      model.sum_across_ranks(stage_reactions.data(), int(stage_reactions.size()));  // (over ranks: each its own supports' share)
       const std::size_t at = rep.history.values.size();
       rep.history.values.resize(at + supports.support_names.size() * d, 0.0);
       for (std::size_t g = 0; g < loading.support_names.size(); ++g)
@@ -165,7 +168,9 @@ SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
           xi0 = plastic_strains(model);
           t0 = wall_seconds();
         };
-        const SolveReport nr = solve_newton(model, stage.loading, nopt, u, progress);
+        auto* tangent = dynamic_cast<TangentModel*>(&model);
+        if (!tangent) throw std::invalid_argument("solve_load_path: the Newton scheme needs a model with a tangent");
+        const SolveReport nr = solve_newton(*tangent, stage.loading, nopt, u, progress);
         rep.iterations += nr.iterations;
         if (nr.diverged) throw DivergenceError(where(stage, int(k), int(nr.history.rows())) + ": " + nr.failure, done + nr.diverged_at);
         if (!nr.failure.empty()) throw SolveError(where(stage, int(k), int(nr.history.rows())) + ": " + nr.failure);

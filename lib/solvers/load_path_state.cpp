@@ -5,7 +5,7 @@
 
 namespace perinom::detail {
 
-int restore(TangentModel& model, std::vector<LoadStage>& stages, const LoadPathState& st,
+int restore(Model& model, std::vector<LoadStage>& stages, const LoadPathState& st,
             std::vector<double>& u, SolveReport& rep) {
   const bool fits = st.stage >= 0 && st.stage < int(stages.size()) && st.step >= 1 && st.step <= stages[st.stage].steps &&
                     st.stage_value0.size() == std::size_t(st.stage) + 1 && st.u.size() == u.size() &&
@@ -33,7 +33,7 @@ int restore(TangentModel& model, std::vector<LoadStage>& stages, const LoadPathS
   return steps_done(st, stages);
 }
 
-LoadPathState state_after(const TangentModel& model, const std::vector<LoadStage>& stages, int k, int step,
+LoadPathState state_after(const Model& model, const std::vector<LoadStage>& stages, int k, int step,
                           const std::vector<double>& u, const std::vector<double>& u_prev, const SolveReport& rep) {
   LoadPathState st;
   st.stage = k, st.step = step, st.iterations = rep.iterations, st.residual = rep.residual;

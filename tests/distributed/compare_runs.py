@@ -4,7 +4,9 @@
 Checks: both exit 0 with status converged; the same particle and bond counts; every point
 probe, line probe row and support reaction within --tolerance of the serial value (relative
 to the largest magnitude of its kind); the history's columns alike (and, for a dynamic run,
-every row within the tolerance); the final snapshot's pieces, one per rank, holding every
+every row within the tolerance; for a load path, load_steps.csv's steps and reactions, its
+counts of LBC rounds and flagged, yielding and plastic particles exactly, and the point
+probes' histories row by row); the final snapshot's pieces, one per rank, holding every
 particle once between them. Prints "compare: passed" or what differs, and exits 1 then.
 Standard library only: the CI's python3 runs it.
 """
@@ -83,10 +85,41 @@ def main():
     for name, r in reactions.items():
         for c, x in enumerate(r):
             close("reaction %s[%d]" % (name, c), x, m["reactions"][name][c], scale)
-    head_s, hs = rows(os.path.join(serial, "history.csv"))
-    head_m, hm = rows(os.path.join(ranked, "history.csv"))
+    load_path = "load_steps" in s["solver"]
+    head_s, hs = rows(os.path.join(serial, "load_steps.csv" if load_path else "history.csv"))
+    head_m, hm = rows(os.path.join(ranked, "load_steps.csv" if load_path else "history.csv"))
     if head_s != head_m:
         failures.append("history: the columns differ")
+    elif load_path:
+        # One row per load step: the same steps, and each step's reactions against the
+        # largest (the balances' iteration counts, residuals and times may differ).
+        if len(hs) != len(hm):
+            failures.append("load_steps: %d rows serial, %d on %d ranks" % (len(hs), len(hm), a.ranks))
+        supports = [c for c, column in enumerate(head_s) if re.search(r"\.R[xyz]?$", column)]
+        largest = max([abs(r[c]) for r in hs for c in supports] + [1e-300])
+        for c in [0, 1, 2] + supports:
+            for r in range(min(len(hs), len(hm))):
+                close("load step %d %s" % (r + 1, head_s[c]), hs[r][c], hm[r][c], largest if c in supports else 1.0)
+        # LBC's decisions, counted over the whole body: the same in every step.
+        for c, column in enumerate(head_s):
+            if column in ("rounds", "newly_flagged", "yielding", "plastic"):
+                for r in range(min(len(hs), len(hm))):
+                    if hs[r][c] != hm[r][c]:
+                        failures.append("load step %d %s: %d serial, %d on %d ranks" % (r + 1, column, hs[r][c], hm[r][c], a.ranks))
+        # The point probes' histories, column by column against each column's largest.
+        for name in sorted(f for f in os.listdir(serial) if f.startswith("probe_") and f.endswith("_history.csv")):
+            if not os.path.exists(os.path.join(ranked, name)):
+                failures.append("%s: the serial run wrote it, the ranks did not" % name)
+                continue
+            head_s, ps = rows(os.path.join(serial, name))
+            head_m, pm = rows(os.path.join(ranked, name))
+            if head_s != head_m or len(ps) != len(pm):
+                failures.append("%s: the columns or the rows differ" % name)
+                continue
+            for c, column in enumerate(head_s):
+                scale = max(max(abs(r[c]) for r in ps), 1e-300)
+                for r in range(len(ps)):
+                    close("%s row %d %s" % (name, r + 1, column), ps[r][c], pm[r][c], scale)
     elif s["solver"]["type"] == "verlet":
         if len(hs) != len(hm):
             failures.append("history: %d rows serial, %d on %d ranks" % (len(hs), len(hm), a.ranks))

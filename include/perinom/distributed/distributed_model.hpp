@@ -3,7 +3,9 @@
 /// serial solvers run unchanged. Its dofs are the owned particles' (in curve order); a force
 /// evaluation copies them into the local part's array, fills the ghosts from their owners
 /// (Halo) and evaluates the local model, whose rows are limited to the owned ones
-/// (CorrespondenceModel::limit_rows). The solvers' sums go over the ranks.
+/// (CorrespondenceModel::limit_rows). The solvers' sums go over the ranks. A law with
+/// history (plasticity) is driven through it as a ModelHistory over the ranks
+/// (distributed_history.cpp).
 #include <memory>
 #include <vector>
 
@@ -13,7 +15,7 @@
 
 namespace perinom {
 
-class DistributedModel : public Model {
+class DistributedModel : public Model, public ModelHistory {
  public:
   /// `local` is the model of `part`'s particles (owned first, then the ghosts), built on
   /// subcloud(cloud, part.particles); its rows are limited here. Both must outlive this.
@@ -36,12 +38,33 @@ class DistributedModel : public Model {
   /// what the local model evaluates (for output and probes through it).
   const std::vector<double>& local_state(const double* u) const;
 
+  /// Itself when the local model has history (a plastic law), else nullptr.
+  ModelHistory* history() override { return local_.history() ? this : nullptr; }
+  // ModelHistory over the ranks: the local model's, whose near ghosts evaluate the same
+  // states as their owners (their families are whole) but in another order, so after every
+  // commit and flagging each ghost takes its owner's committed state and flag (the same bits
+  // on every rank); counts, flags and xi are the owned particles'.
+  void set_history_mode(HistoryMode mode) override;
+  /// The owned particles newly flagged, summed over the ranks (every rank sees the total).
+  std::size_t flag_violations(double tolerance) override;
+  std::vector<double> history_variable() const override;  ///< the owned particles'
+  std::size_t values_per_particle() const override;
+  HistoryState save_history() const override;              ///< the owned particles'
+  void restore_history(const HistoryState& state) override;  ///< the owned particles'
+  void reset_history() override;
+  void commit(const double* u) override;
+  void commit_trial() override;
+
  private:
   CorrespondenceModel& local_;
   const LocalPart& part_;
   mutable std::vector<double> u_local_;  // the halo's array: it must not move
   std::vector<double> f_local_;
   std::unique_ptr<Halo> halo_;
+  /// The owners' committed states and flags to their ghosts (local history to share_ first).
+  void share_history(HistoryState state);
+  std::vector<double> shared_;  // the history halo's array: per local particle, its values and flag
+  std::unique_ptr<Halo> history_halo_;
 };
 
 }  // namespace perinom

@@ -9,9 +9,10 @@ namespace perinom {
 /// owned particles of `part`, numbered as their dofs are in the DistributedModel: the
 /// constraints on them (values, rates, supports, all support names kept, so every rank's
 /// reactions line up) and their external forces (pressures' included: small strain, they do
-/// not follow the surface, and pressure_force is dropped). A face-located constraint reads
-/// other particles (rank_loading.hpp couples them) and a stage start carries values: both are
-/// refused (std::invalid_argument).
+/// not follow the surface, and pressure_force is dropped). `whole` is taken as the frame
+/// builds it: its face-located constraints not coupled yet (rank_loading.hpp couples each
+/// rank's) and no stage begun (each rank's loading begins its own); otherwise
+/// std::invalid_argument.
 Loading local_loading(const Loading& whole, const LocalPart& part, int d);
 
 }  // namespace perinom

@@ -97,6 +97,8 @@ struct Loading {
   /// Makes this loading start where the body is: value0 from u (the constrained values, or
   /// their face reconstructions) and force0 from the previous stage's full force (none for
   /// the first stage). Values and forces of this stage then act as increments and totals.
+  /// Over ranks (`ranks` set) u is the owned dofs; a face constraint's ghost dofs are read
+  /// from their owners (every rank calls it).
   void begin_stage(const Loading* previous, const double* u);
 
   /// Adds a constraint, replacing an earlier one on the same dof (and its support), with a

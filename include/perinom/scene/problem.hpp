@@ -88,6 +88,10 @@ CorrespondenceOptions correspondence_options(const Scene& scene);
 /// from files keeps its facets (p.facets) for the ranks' shares.
 Problem build_problem_frame(const Scene& scene);
 
+/// The boundary items of load stage k (p.stages[k]): the scene's own and the stage's (a
+/// load path without stages has one stage, of the scene's items).
+std::vector<BoundarySpec> stage_boundary(const Scene& scene, std::size_t k);
+
 /// Builds the problem (lattice, families, operators, loading, probes) by the model registry's
 /// row of model.type (registry.cpp). Phases are timed
 /// in `timer` when given. Throws InputError for a region that selects no particle, a

@@ -76,7 +76,8 @@ struct LoadPathState {
 /// The load steps a state has done, counted over all stages (as output.vtk_steps counts).
 int steps_done(const LoadPathState& state, const std::vector<LoadStage>& stages);
 
-/// Runs the stages in order on any model with a tangent; a model with history
+/// Runs the stages in order on any model (the Newton scheme: a TangentModel, else
+/// std::invalid_argument); a model with history
 /// (Model::history(), model_history.hpp) is evaluated by the scheme's mode and committed after
 /// every load step, LBC flagging its particles; a model without history is solved elastic.
 /// Runs the stages in order, each from where the previous ended (Loading::begin_stage).
@@ -95,7 +96,7 @@ int steps_done(const LoadPathState& state, const std::vector<LoadStage>& stages)
 /// carries none: AdrRelaxation::set_load_floor). The history gains the column broken_bonds
 /// (per step) and, for a model without history, external_work and dissipated_energy
 /// (energy_ledger.hpp); checkpoints hold the changes (save) and resume restores them.
-SolveReport solve_load_path(TangentModel& model, std::vector<LoadStage>& stages,
+SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
                             const LoadPathOptions& options, std::vector<double>& u,
                             Progress* progress = nullptr,
                             const std::function<void(const LoadStepRecord&, const std::vector<double>&)>&
