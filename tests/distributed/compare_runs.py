@@ -58,6 +58,21 @@ def main():
         if not abs(x - y) <= a.tolerance * scale:
             failures.append("%s: %.12g serial, %.12g on %d ranks" % (what, x, y, a.ranks))
 
+    def same_table(what, path_s, path_m):
+        """The two runs' CSV tables: the same columns and rows, each value against its column's largest."""
+        if not os.path.exists(path_m):
+            failures.append("%s: the serial run wrote it, the ranks did not" % what)
+            return
+        head_s, ts = rows(path_s)
+        head_m, tm = rows(path_m)
+        if head_s != head_m or len(ts) != len(tm):
+            failures.append("%s: %d rows of %s serial, %d rows of %s on the ranks" % (what, len(ts), head_s, len(tm), head_m))
+            return
+        for c, column in enumerate(head_s):
+            scale = max(max(abs(r[c]) for r in ts), 1e-300)
+            for r in range(len(ts)):
+                close("%s row %d %s" % (what, r + 1, column), ts[r][c], tm[r][c], scale)
+
     for key in ("status", "particles", "bonds"):
         if s[key] != m[key]:
             failures.append("%s: %s serial, %s on %d ranks" % (key, s[key], m[key], a.ranks))
@@ -65,15 +80,7 @@ def main():
         failures.append("ranks: the summary says %s" % m.get("ranks"))
     for name, value in s["probes"].items():
         if isinstance(value, dict):
-            head_s, rs = rows(os.path.join(serial, value["file"]))
-            head_m, rm = rows(os.path.join(ranked, value["file"]))
-            if head_s != head_m or len(rs) != len(rm):
-                failures.append("probe %s: the line differs in columns or length" % name)
-                continue
-            for c, column in enumerate(head_s):
-                scale = max(max(abs(r[c]) for r in rs), 1e-300)
-                for r in range(len(rs)):
-                    close("probe %s row %d %s" % (name, r, column), rs[r][c], rm[r][c], scale)
+            same_table("probe " + name, os.path.join(serial, value["file"]), os.path.join(ranked, value["file"]))
         else:
             close("probe " + name, value, m["probes"][name], max(abs(value), 1e-300))
     # Reactions against the largest, or the loads' scale when they are all rounding (a free
@@ -108,18 +115,7 @@ def main():
                         failures.append("load step %d %s: %d serial, %d on %d ranks" % (r + 1, column, hs[r][c], hm[r][c], a.ranks))
         # The point probes' histories, column by column against each column's largest.
         for name in sorted(f for f in os.listdir(serial) if f.startswith("probe_") and f.endswith("_history.csv")):
-            if not os.path.exists(os.path.join(ranked, name)):
-                failures.append("%s: the serial run wrote it, the ranks did not" % name)
-                continue
-            head_s, ps = rows(os.path.join(serial, name))
-            head_m, pm = rows(os.path.join(ranked, name))
-            if head_s != head_m or len(ps) != len(pm):
-                failures.append("%s: the columns or the rows differ" % name)
-                continue
-            for c, column in enumerate(head_s):
-                scale = max(max(abs(r[c]) for r in ps), 1e-300)
-                for r in range(len(ps)):
-                    close("%s row %d %s" % (name, r + 1, column), ps[r][c], pm[r][c], scale)
+            same_table(name, os.path.join(serial, name), os.path.join(ranked, name))
     elif s["solver"]["type"] == "verlet":
         if len(hs) != len(hm):
             failures.append("history: %d rows serial, %d on %d ranks" % (len(hs), len(hm), a.ranks))
@@ -150,20 +146,7 @@ def main():
     pvd_s = open(os.path.join(serial, s["name"] + ".pvd")).read()
     csv_s = os.path.join(serial, re.findall(r'file="([^"]+)"', pvd_s)[-1][:-4] + ".csv")
     if os.path.exists(csv_s):
-        csv_m = os.path.join(ranked, last[:-5] + ".csv")
-        if not os.path.exists(csv_m):
-            failures.append("snapshot %s: the serial run wrote it, the ranks did not" % os.path.basename(csv_m))
-        else:
-            head_s, cs = rows(csv_s)
-            head_m, cm = rows(csv_m)
-            if head_s != head_m or len(cs) != len(cm):
-                failures.append("snapshot CSV: %d rows of %s serial, %d rows of %s on the ranks"
-                                % (len(cs), head_s, len(cm), head_m))
-            else:
-                for c, column in enumerate(head_s):
-                    scale = max(max(abs(r[c]) for r in cs), 1e-300)
-                    for r in range(len(cs)):
-                        close("snapshot CSV row %d %s" % (r, column), cs[r][c], cm[r][c], scale)
+        same_table("snapshot CSV " + os.path.basename(csv_s), csv_s, os.path.join(ranked, last[:-5] + ".csv"))
     for f in failures[:20]:
         print("compare: " + f)
     print("compare: largest relative difference %.3e (tolerance %g); iterations %d serial, %d on %d ranks"
