@@ -25,8 +25,8 @@ Usage: verification/fracture/four_point_beam.py [path/to/perinom] [--reuse] [--2
 --2d: the 2-D model only.)
 Writes docs/verification/four_point_beam.md and four_point_beam*.png (Debian's python3 with
 numpy, matplotlib and vtk; /usr/bin/time for the memory). The 2-D run takes about 30 s; the
-3-D one takes longer than a session (755 of 1,000 load steps in 76 minutes of load steps on one
-and two cores, the cascades of breaks costing up to 55 balances and 292 s a step), hence --2d."""
+3-D one about two and a half hours (all 1,000 load steps in 8,847 s on one thread beside other
+work, the cascades of breaks costing up to 55 balances and 292 s a step), hence --2d."""
 import csv, json, os, re, subprocess, sys, time
 import numpy as np
 
