@@ -177,6 +177,18 @@ def write_nset(f, name, nodes):
     f.write(f"*NSET, NSET={name}\n" + "".join(f"{v},\n" for v in nodes))
 
 
+def write_rollers_in_tension(f, e_mod, nu, faces, traction):
+    """A unit-thickness isotropic plate held by rollers on NLEFT (x) and NBOT (y), and the
+    opening of its static step: the traction pulling the element faces (a negative *DLOAD
+    pressure). The caller adds its outputs and *END STEP."""
+    f.write(f"*MATERIAL, NAME=M\n*ELASTIC\n{num(e_mod)}, {num(nu)}\n")
+    f.write("*SOLID SECTION, ELSET=EALL, MATERIAL=M\n1.0\n")
+    f.write("*BOUNDARY\nNLEFT, 1, 1, 0.0\nNBOT, 2, 2, 0.0\n")
+    f.write("*STEP\n*STATIC\n*DLOAD\n")
+    for eid, face in faces:
+        f.write(f"{eid}, P{face}, {num(-traction)}\n")   # negative pressure = tension
+
+
 # ---- step 3: run ccx, read .dat and .frd ------------------------------------------------
 def run_ccx(work, job, what):
     """Runs ccx on work/job.inp; returns its wall time in seconds, exits on failure."""

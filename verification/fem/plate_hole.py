@@ -129,12 +129,7 @@ def write_inp(path, ids, xy, elems):
         cc.write_mesh(f, "quarter plate with a hole, plane strain, CPE8", ids, xy, elems, "CPE8")
         for name, nodes in (("NLEFT", left), ("NBOT", bottom), ("NPTS", points), ("NHOLE", hole)):
             cc.write_nset(f, name, nodes)
-        f.write(f"*MATERIAL, NAME=M\n*ELASTIC\n{cc.num(E)}, {cc.num(NU)}\n")
-        f.write("*SOLID SECTION, ELSET=EALL, MATERIAL=M\n1.0\n")
-        f.write("*BOUNDARY\nNLEFT, 1, 1, 0.0\nNBOT, 2, 2, 0.0\n")
-        f.write("*STEP\n*STATIC\n*DLOAD\n")
-        for eid, face in dload:
-            f.write(f"{eid}, P{face}, {cc.num(-S)}\n")   # negative pressure = tension
+        cc.write_rollers_in_tension(f, E, NU, dload, S)
         f.write("*NODE PRINT, NSET=NLEFT\nU\n")
         f.write("*NODE PRINT, NSET=NBOT\nU\n")
         f.write("*NODE PRINT, NSET=NPTS\nU\n")
