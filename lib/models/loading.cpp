@@ -16,7 +16,7 @@ void Loading::not_converged(const char* what, std::size_t k) const {
   throw SolveError(std::string(what) + " did not converge in 200 sweeps: " + where +
                    " changed most in the last one. The constraints of a face read each other "
                    "too strongly for the sweeps (a face point far from its particles on a coarse "
-                   "cloud?); hold the support on its particles (at: particles) or refine");
+                   "cloud?); hold the support on its particles (at: layer) or refine");
 }
 
 void Loading::fix(std::int64_t dof, double v, int support_index, double v_rate) {

@@ -60,6 +60,7 @@ TEST_CASE("impose and the multipliers stop with a SolveError naming the support 
     CHECK(what.find("did not converge") != std::string::npos);
     CHECK(what.find("support 'wall'") != std::string::npos);
     CHECK(what.find("dof ") != std::string::npos);
+    CHECK(what.find("(at: layer)") != std::string::npos);  // a value the scene reader takes
   }
   double fint[3] = {-1.0, -1.0, 0.0}, lambda[2];
   CHECK_THROWS_AS(l.multipliers(fint, 1.0, lambda), SolveError);
