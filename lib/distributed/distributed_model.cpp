@@ -33,9 +33,17 @@ std::vector<double> DistributedModel::lumped_mass() const {
 
 std::vector<double> DistributedModel::stiffness_row_sums() const {
   // The owned rows read the near ghosts' rows of G, which their full families make exact.
+  return local_.stiffness_row_sums(owned_rows());
+}
+
+std::vector<ParticleId> DistributedModel::owned_rows() const {
   std::vector<ParticleId> rows(part_.owned);
   std::iota(rows.begin(), rows.end(), ParticleId(0));
-  return local_.stiffness_row_sums(rows);
+  return rows;
+}
+
+void DistributedModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
+  local_.visit_tangent_rows(owned_rows(), visit);
 }
 
 std::vector<std::pair<std::string, std::size_t>> DistributedModel::memory() const {

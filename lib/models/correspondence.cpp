@@ -246,6 +246,13 @@ void CorrespondenceModel::visit_tangent_rows(const TangentRowVisitor& visit) con
   visit_rows(PointwiseTangent{C_.data(), C_stride_, volume_.data()}, visit, local);
 }
 
+void CorrespondenceModel::visit_tangent_rows(const std::vector<ParticleId>& rows, const TangentRowVisitor& visit) const {
+  if (formulation_ != Formulation::classical && formulation_ != Formulation::consistent)
+    throw std::logic_error("visit_tangent_rows(rows): for the classical and consistent formulations");
+  if (follower_ && follower_->active()) throw std::logic_error("visit_tangent_rows(rows): not with follower loads");
+  for_each_tangent_row(rows, G_, PointwiseTangent{C_.data(), C_stride_, volume_.data()}, S_.get(), visit, true);
+}
+
 void CorrespondenceModel::prepare_tangent(const double* u) {
   G_.apply(u, dim_, H_.data());
   if (follower_ && follower_->active()) follower_->tangent(H_.data(), follower_tangent_);

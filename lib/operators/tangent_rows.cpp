@@ -107,9 +107,10 @@ void for_each_tangent_row(const NonlocalOperator& G, const PointwiseTangent& tan
 }
 
 void for_each_tangent_row(const std::vector<ParticleId>& rows, const NonlocalOperator& G,
-                          const PointwiseTangent& tangent, const StabilizationTerm* S, const BlockRowVisitor& visit) {
+                          const PointwiseTangent& tangent, const StabilizationTerm* S, const BlockRowVisitor& visit,
+                          bool sorted) {
   for_each_block_row(rows, G.rows(), G.dim() * G.dim(),
-                     [&] { return RowFill(TangentRowFill(G, tangent, S, nullptr, nullptr, true)); }, visit, false);
+                     [&] { return RowFill(TangentRowFill(G, tangent, S, nullptr, nullptr, true)); }, visit, sorted);
 }
 
 }  // namespace perinom

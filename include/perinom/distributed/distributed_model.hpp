@@ -5,7 +5,8 @@
 /// (Halo) and evaluates the local model, whose rows are limited to the owned ones
 /// (CorrespondenceModel::limit_rows). The solvers' sums go over the ranks. A law with
 /// history (plasticity) is driven through it as a ModelHistory over the ranks
-/// (distributed_history.cpp).
+/// (distributed_history.cpp). Its stiffness rows are the owned particles', their columns the
+/// local part's particles (owned, then ghosts): what Newton over the ranks assembles.
 #include <memory>
 #include <vector>
 
@@ -15,7 +16,7 @@
 
 namespace perinom {
 
-class DistributedModel : public Model, public ModelHistory {
+class DistributedModel : public TangentModel, public ModelHistory {
  public:
   /// `local` is the model of `part`'s particles (owned first, then the ghosts), built on
   /// subcloud(cloud, part.particles); its rows are limited here. Both must outlive this.
@@ -38,6 +39,12 @@ class DistributedModel : public Model, public ModelHistory {
   /// what the local model evaluates (for output and probes through it).
   const std::vector<double>& local_state(const double* u) const;
 
+  // TangentModel over the ranks: the local model's tangent at the local state (collective).
+  void prepare_tangent(const double* u) override { local_.prepare_tangent(local_state(u).data()); }
+  void visit_tangent_rows(const TangentRowVisitor& visit) const override;  ///< the owned rows
+  std::size_t column_particles() const override { return part_.particles.size(); }
+  std::vector<double> column_values(const double* own) const override { return local_state(own); }
+
   /// Itself when the local model has history (a plastic law), else nullptr.
   ModelHistory* history() override { return local_.history() ? this : nullptr; }
   // ModelHistory over the ranks: the local model's, whose near ghosts evaluate the same
@@ -58,6 +65,7 @@ class DistributedModel : public Model, public ModelHistory {
  private:
   CorrespondenceModel& local_;
   const LocalPart& part_;
+  std::vector<ParticleId> owned_rows() const;  ///< 0 .. owned - 1
   mutable std::vector<double> u_local_;  // the halo's array: it must not move
   std::vector<double> f_local_;
   std::unique_ptr<Halo> halo_;

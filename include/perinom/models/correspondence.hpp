@@ -129,6 +129,10 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// G^T (V . C) G, the strong rows of the band E for the improved and strong formulations,
   /// plus S. See for_each_tangent_row for the arguments of visit.
   void visit_tangent_rows(const TangentRowVisitor& visit) const override;
+  /// The same for the listed rows only (sorted, distinct; their columns sorted), at the
+  /// last prepare_tangent: a distributed rank's own rows. The classical and consistent
+  /// formulations without follower loads only (throws std::logic_error else).
+  void visit_tangent_rows(const std::vector<ParticleId>& rows, const TangentRowVisitor& visit) const;
 
   /// A distributed rank's local model (neighbors/local_part.hpp): internal_force evaluates
   /// grad u and the law on the first `evaluated` particles (owned and near ghosts) and writes

@@ -24,6 +24,13 @@ class TangentModel : public Model {
  public:
   virtual void visit_tangent_rows(const TangentRowVisitor& visit) const = 0;
   virtual void prepare_tangent(const double* u) = 0;
+  /// The particles the visited rows' columns number: particles() for a whole model. A part
+  /// of a model spread over MPI ranks (DistributedModel) visits its own particles' rows, and
+  /// its columns number its own particles, then the ghosts its rows reach.
+  virtual std::size_t column_particles() const { return particles(); }
+  /// Values given per dof of the own particles, over the column particles' dofs: a ghost's
+  /// values are its owner's (collective over the ranks). A whole model's are `own` itself.
+  virtual std::vector<double> column_values(const double* own) const { return {own, own + dofs()}; }
 };
 
 }  // namespace perinom

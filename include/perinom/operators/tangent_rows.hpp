@@ -42,10 +42,11 @@ struct StrongRows {
 void for_each_tangent_row(
     const NonlocalOperator& G, const PointwiseTangent& tangent, const StabilizationTerm* S,
     const BlockRowVisitor& visit, const StrongRows* strong = nullptr, const double* local = nullptr);
-/// The same for the listed rows only (distinct), for sums over a row: the columns come in no
-/// order, and a stored S0 (the assembled level) is read as stored, not taken from its closed
-/// form (the same entries to rounding, at a fraction of the cost).
+/// The same for the listed rows only (distinct): the columns come sorted only if asked (sums
+/// over a row need no order), and a stored S0 (the assembled level) is read as stored, not
+/// taken from its closed form (the same entries to rounding, at a fraction of the cost).
 void for_each_tangent_row(const std::vector<ParticleId>& rows, const NonlocalOperator& G,
-                          const PointwiseTangent& tangent, const StabilizationTerm* S, const BlockRowVisitor& visit);
+                          const PointwiseTangent& tangent, const StabilizationTerm* S, const BlockRowVisitor& visit,
+                          bool sorted = false);
 
 }  // namespace perinom
