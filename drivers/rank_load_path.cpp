@@ -30,11 +30,23 @@ std::vector<double> probe_row(const RankRun& run, const LoadStepRecord& r, const
 
 }  // namespace
 
+NewtonOptions rank_newton_options(const SolverSpec& solver, const RankRun& run) {
+  NewtonOptions o = newton_options(solver);
+  if (o.linear_solver == "gamg") {
+    const int d = run.local.cloud.dim;
+    o.dimension = d;
+    o.positions.assign(run.local.cloud.x.begin(), run.local.cloud.x.begin() + std::ptrdiff_t(run.part.owned * d));
+  }
+  return o;
+}
+
 SolveReport run_rank_load_path(const RankRun& run, DistributedModel& model, std::vector<LoadStage>& stages,
                                const std::string& dir, std::vector<double>& u, io::PvdSeries& series,
                                ProbeHistory& probes, std::int64_t& last_snapshot) {
   const Scene& scene = run.frame.scene;
-  const LoadPathOptions opt = load_path_options(scene.solver);
+  LoadPathOptions opt = load_path_options(scene.solver);
+  const NewtonOptions newton = rank_newton_options(scene.solver, run);
+  opt.newton.positions = newton.positions, opt.newton.dimension = newton.dimension;
   print_load_path_plan(scene, stages, opt);  // (the other ranks' stdout is silenced)
   std::int64_t done = 0;
   StepProgress progress;

@@ -1,5 +1,5 @@
 #pragma once
-// A load path (stages, solver.type adr or lbc) run by `mpirun -np R perinom run` (issue 19):
+// A load path (stages, solver.type adr, lbc or newton) run by `mpirun -np R perinom run` (issue 19):
 // the serial solve_load_path on the DistributedModel, with what a serial run prints and
 // writes after each load step done over the ranks.
 #include <cstdint>
@@ -16,6 +16,9 @@ namespace perinom::cli {
 /// values are gathered into `probes` (rank 0's copy complete), and after the steps
 /// output.vtk_steps names (or every output.vtk_every) every rank writes its snapshot piece
 /// (last_snapshot: the last step written). Every rank calls it.
+/// Newton's options for a rank: GAMG's rigid-body modes from the owned particles' positions.
+NewtonOptions rank_newton_options(const SolverSpec& solver, const RankRun& run);
+
 SolveReport run_rank_load_path(const RankRun& run, DistributedModel& model, std::vector<LoadStage>& stages,
                                const std::string& dir, std::vector<double>& u, io::PvdSeries& series,
                                ProbeHistory& probes, std::int64_t& last_snapshot);

@@ -2,14 +2,16 @@
 // Morton curve; each rank builds the families and operators of its local part (owned, then
 // the ghosts within two horizons) and runs the serial ADR, Verlet or load path (stages, LBC)
 // on its owned dofs through DistributedModel (one halo exchange of u per force, the solvers'
-// sums over the ranks, a plastic law's states shared with the ghosts after each commit).
+// sums over the ranks, a plastic law's states shared with the ghosts after each commit),
+// or Newton through PETSc SNES with its Jacobian assembled over the ranks (mumps or gamg).
 // Rank 0 prints and writes the history, the probes and summary.json; every rank writes its
 // piece of each snapshot. Partial, and refused otherwise, naming the key: correspondence
 // scenes of the classical or consistent formulation on a lattice or a body from files (the
 // consistent correction solved over the ranks), radius families, small strain, elastic or
 // Drucker-Prager, constraints on their particles or at the face (Galerkin, their multipliers
 // solved over the ranks: Loading::ranks), `constraints: rigid_body` (pinned on the whole
-// cloud), tractions and pressures, adr, verlet, or a load path by adr or lbc. Every rank
+// cloud), tractions and pressures, adr, verlet, newton (constraints on their particles
+// only), or a load path by adr or lbc. Every rank
 // builds the whole cloud and loading (O(N) memory per rank) to choose its part.
 #include <omp.h>
 
@@ -32,6 +34,7 @@
 #include "perinom/scene/rank_loading.hpp"
 #include "perinom/scene/registry.hpp"
 #include "perinom/solvers/adr.hpp"
+#include "perinom/solvers/newton.hpp"
 #include "perinom/solvers/verlet.hpp"
 #include "rank_load_path.hpp"
 #include "rank_memory.hpp"
@@ -48,8 +51,8 @@ void require_distributed(const Scene& s, const Options& opt) {
     throw InputError(s.source + ": " + key + ": " + what +
                      " is not distributed yet (mpirun -np R perinom run distributes correspondence scenes of the "
                      "classical or consistent formulation on a box or a body from files, elastic or drucker_prager at "
-                     "small strain, solved by adr or verlet, or in load steps and stages by adr or lbc, with constraints "
-                     "on their particles or at the face or rigid_body, tractions and pressures); run it without mpirun");
+                     "small strain, solved by adr, verlet or newton (mumps or gamg), or in load steps and stages by adr "
+                     "or lbc, with constraints on their particles or at the face or rigid_body, tractions and pressures); run it without mpirun");
   };
   if (!opt.restart.empty()) refuse("--restart", "a restart");
   if (s.model.type != "correspondence") refuse("model.type", s.model.type);
@@ -57,7 +60,8 @@ void require_distributed(const Scene& s, const Options& opt) {
     refuse("model.formulation", "the " + s.model.formulation + " formulation (its strong rows read the whole body)");
   if (s.discretization.horizon_neighbors > 0) refuse("discretization.horizon.neighbors", "k-nearest families");
   if (s.model.kinematics != "small_strain") refuse("model.kinematics", s.model.kinematics);
-  if (s.solver.type != "adr" && s.solver.type != "verlet" && !(s.solver.type == "lbc" && s.load_path()))
+  if (s.solver.type != "adr" && s.solver.type != "verlet" && s.solver.type != "newton" &&
+      !(s.solver.type == "lbc" && s.load_path()))
     refuse("solver.type", s.solver.type);
   if (s.damage) refuse("damage", "bond breaking");
   if (!s.precracks.empty()) refuse("precracks", "a precrack");
@@ -75,8 +79,15 @@ int run_distributed(const Options& opt) {
   if (!root && !std::freopen("/dev/null", "w", stdout)) throw InputError("cannot silence rank " + std::to_string(world.rank));
   PhaseTimer timer;
   timer.start("read scene");
-  const Scene scene = read_scene(opt.positional[0], opt.overrides);
+  Scene scene = read_scene(opt.positional[0], opt.overrides);
   require_distributed(scene, opt);
+  if (scene.solver.type == "newton" && scene.solver.linear_solver == "klu") {
+    // KLU factors on one process; MUMPS is the direct solver over the ranks (the same
+    // Newton steps to rounding).
+    scene.solver.linear_solver = "mumps";
+    std::printf("perinom: solver.linear_solver: klu factors on one process; over %d ranks Newton's linear solver "
+                "is mumps\n", world.size);
+  }
   const std::string dir = !opt.out.empty() ? opt.out : "out/" + scene.name;
   std::optional<RunFolder> folder;
   if (root) {
@@ -148,9 +159,10 @@ int run_distributed(const Options& opt) {
   ProbeHistory probe_history;
   timer.start("solve");
   const SolveReport rep =
-      scene.load_path() ? run_rank_load_path(run, distributed, stages, dir, u, series, probe_history, last_snapshot)
-      : dynamic         ? solve_verlet(distributed, loading, verlet_options(scene.solver), u, v, shown, observe)
-                        : solve_adr(distributed, loading, adr_options(scene.solver), u, shown, observe);
+      scene.load_path()               ? run_rank_load_path(run, distributed, stages, dir, u, series, probe_history, last_snapshot)
+      : dynamic                       ? solve_verlet(distributed, loading, verlet_options(scene.solver), u, v, shown, observe)
+      : scene.solver.type == "newton" ? solve_newton(distributed, loading, rank_newton_options(scene.solver, run), u, shown)
+                                      : solve_adr(distributed, loading, adr_options(scene.solver), u, shown, observe);
   const std::int64_t steps_done = std::int64_t(rep.history.rows());  // a load path's
 
   // The final state, the history and the summary (rank 0).

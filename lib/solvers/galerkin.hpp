@@ -48,4 +48,11 @@ using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 /// InputError past 2^31 - 1 nonzeros (its indices, and PETSc's here, are 32-bit).
 RowSparse reduced_stiffness(const TangentModel& model, const TRows& t);
 
+/// K_T's rows for a model spread over MPI ranks whose constraints all sit on their particles
+/// (T only selects the free dofs): one row per own free dof (free_index over the own dofs,
+/// -1 for a constrained one), its columns the global free numbers `column` gives each column
+/// dof (TangentModel::column_values; -1 for a constrained dof) out of `columns`, sorted.
+RowSparse own_stiffness(const TangentModel& model, const std::vector<std::int64_t>& free_index,
+                        const std::vector<int>& column, int columns);
+
 }  // namespace perinom::detail

@@ -77,6 +77,7 @@ void append_reactions(TangentModel& model, const Loading& loading, double s, con
   model.follow_loads(loading, s);
   model.internal_force(u, fint.data());
   loading.reactions(fint.data(), s, model.dofs_per_particle(), reactions.data());
+  model.sum_across_ranks(reactions.data(), static_cast<int>(reactions.size()));  // a rank's share
   history.values.insert(history.values.end(), reactions.begin(), reactions.end());
 }
 }  // namespace detail

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <exception>
 #include <memory>
+#include <numeric>
 
 #include <Eigen/Dense>
 
@@ -33,7 +34,16 @@ struct Owned {
 };
 
 /// The reduced problem: u = T x + p(s) with x the free dofs, R(x) = T^T (f_int(u) - f_ext(s)),
-/// J(x) = T^T K(u) T. The prescribed part is affine in s (targets value0 + s value).
+/// J(x) = T^T K(u) T. The prescribed part is affine in s (targets value0 + s value). Over MPI
+/// ranks (a DistributedModel) x, u and f are this rank's own dofs, and J's rows too.
+/// Over ranks with face-located constraints, whose T would read other ranks' dofs, the
+/// multiplier form instead: x = (u, lambda) over the own dofs and constraints,
+/// R = (f_int(u) - f_ext(s) + E^T lambda, E u - t(s)), J = [K E^T; E 0], E's row of
+/// constraint k being u_F / scale_k + sum_c coef_c u_c (Loading) times a stiffness k_E (the
+/// mean of K's row sums), so that its rows weigh as much as the force rows in SNES's norms (in
+/// metres, a step's constraint rows start near 1e-6 against forces balanced to rounding, and
+/// SNES's relative decrease cannot be met: the plastic plate's line search failed so). Both
+/// forms have the same u (E T = 0); the second is a saddle point, for MUMPS.
 struct Reduced {
   TangentModel& model;
   const Loading& loading;
@@ -43,25 +53,105 @@ struct Reduced {
   double s = 0.0;
   Eigen::VectorXd u, f;
   bool assembled = false;  // the Jacobian's pattern is in the Mat
+  // Over more than one rank: this rank's first free number in the global numbering, and each
+  // column dof's global free number (own dofs, then ghosts; -1 for a constrained one).
+  bool spread = false;
+  PetscInt first = 0, global = 0;
+  std::vector<int> column;
+  // The multiplier form: the constraints' count (0 in the reduced form) and E, E^T as global
+  // (row, column, value) entries, and as a Mat.
+  PetscInt lambdas = 0;
+  double k_E = 1.0;
+  std::vector<PetscInt> e_row, e_col;
+  std::vector<double> e_value;
+  Owned<Mat, MatDestroy> E;
   /// What a callback threw (an exception must not cross PETSc's C frames): SNESSolve then
   /// returns an error, and the solve rethrows this instead.
   std::exception_ptr error;
 
   Reduced(TangentModel& m, const Loading& l) : model(m), loading(l) {
+    int size = 1;
+    MPI_Comm_size(PETSC_COMM_WORLD, &size);
+    spread = size > 1;
     const std::size_t n = model.dofs();
-    const auto index = free_index(n, loading);
+    const bool multiplied = spread && any_couplings();
+    std::vector<std::int64_t> index(n);
+    if (multiplied) std::iota(index.begin(), index.end(), std::int64_t(0));
+    else index = free_index(n, loading);
     int free = 0;
     for (const auto k : index) free += k >= 0 ? 1 : 0;
-    Reduction at0 = reduce(n, loading, index, free, 0.0);
-    const Reduction at1 = reduce(n, loading, index, free, 1.0);
-    T = std::move(at0.T);
+    if (multiplied) {
+      // u is x's first part: T the identity, nothing prescribed.
+      T = Sparse(Eigen::Index(n), Eigen::Index(n));
+      T.setIdentity();
+      p0 = dp = Eigen::VectorXd::Zero(Eigen::Index(n));
+      lambdas = PetscInt(loading.fixed.size());
+    } else {
+      Reduction at0 = reduce(n, loading, index, free, 0.0);
+      const Reduction at1 = reduce(n, loading, index, free, 1.0);
+      T = std::move(at0.T);
+      p0 = Eigen::Map<const Eigen::VectorXd>(at0.prescribed.data(), static_cast<Eigen::Index>(n));
+      dp = Eigen::Map<const Eigen::VectorXd>(at1.prescribed.data(), static_cast<Eigen::Index>(n)) - p0;
+    }
     rows = std::make_unique<TRows>(T, index);
-    p0 = Eigen::Map<const Eigen::VectorXd>(at0.prescribed.data(), static_cast<Eigen::Index>(n));
-    dp = Eigen::Map<const Eigen::VectorXd>(at1.prescribed.data(), static_cast<Eigen::Index>(n)) - p0;
     u.resize(static_cast<Eigen::Index>(n));
     f.resize(static_cast<Eigen::Index>(n));
+    if (spread) number_columns(index, free + lambdas);
+    if (multiplied) constraint_rows();
   }
-  PetscInt free() const { return static_cast<PetscInt>(T.cols()); }
+  /// Whether a rank has face-located constraints (collective): over ranks they read other
+  /// ranks' dofs, so the multiplier form.
+  bool any_couplings() const {
+    int couplings = loading.coupled_constraints() ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &couplings, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+    return couplings != 0;
+  }
+  /// E and E^T of this rank's constraints, in the global numbering (collective: E's Mat).
+  void constraint_rows() {
+    const PetscInt own = PetscInt(model.dofs());
+    const std::vector<double> sums = model.stiffness_row_sums();
+    double mean[2] = {std::accumulate(sums.begin(), sums.end(), 0.0), double(sums.size())};
+    model.sum_across_ranks(mean, 2);
+    k_E = mean[0] / mean[1];
+    auto add = [&](PetscInt k, PetscInt dof, double v) {
+      v *= k_E;
+      e_row.push_back(first + own + k), e_col.push_back(dof), e_value.push_back(v);  // E
+      e_row.push_back(dof), e_col.push_back(first + own + k), e_value.push_back(v);  // E^T
+    };
+    for (PetscInt k = 0; k < lambdas; ++k) {
+      add(k, first + PetscInt(loading.fixed[std::size_t(k)]), 1.0 / loading.scale[std::size_t(k)]);
+      for (Offset c = loading.couplings[std::size_t(k)]; c < loading.couplings[std::size_t(k) + 1]; ++c)
+        add(k, column[std::size_t(loading.coupled[c])], loading.coef[c]);
+    }
+    check(MatCreate(PETSC_COMM_WORLD, &E.p), "MatCreate");
+    check(MatSetSizes(E.p, own + lambdas, own + lambdas, PETSC_DETERMINE, PETSC_DETERMINE), "MatSetSizes");
+    check(MatSetType(E.p, MATAIJ), "MatSetType");
+    check(MatSetUp(E.p), "MatSetUp");
+    check(MatSetOption(E.p, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
+    check(add_constraints(E.p), "MatSetValues");
+    check(MatAssemblyBegin(E.p, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check(MatAssemblyEnd(E.p, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  }
+  /// Adds E and E^T to A (rows of other ranks included; before A's assembly).
+  PetscErrorCode add_constraints(Mat A) const {
+    PetscErrorCode e = 0;
+    for (std::size_t k = 0; k < e_row.size() && !e; ++k)
+      e = MatSetValues(A, 1, &e_row[k], 1, &e_col[k], &e_value[k], ADD_VALUES);
+    return e;
+  }
+  /// The global free numbers of the column dofs (collective).
+  void number_columns(const std::vector<std::int64_t>& index, PetscInt own) {
+    MPI_Exscan(&own, &first, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
+    int rank = 0;
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+    if (rank == 0) first = 0;  // MPI_Exscan leaves rank 0's undefined
+    MPI_Allreduce(&own, &global, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
+    std::vector<double> number(index.size());
+    for (std::size_t k = 0; k < index.size(); ++k) number[k] = index[k] >= 0 ? double(first + index[k]) : -1.0;
+    const std::vector<double> at_columns = model.column_values(number.data());
+    column.assign(at_columns.begin(), at_columns.end());
+  }
+  PetscInt free() const { return static_cast<PetscInt>(T.cols()) + lambdas; }
   void expand(const double* x) {
     u = T * Eigen::Map<const Eigen::VectorXd>(x, T.cols()) + p0 + s * dp;
   }
@@ -72,15 +162,17 @@ struct Reduced {
     if (loading.has_force())
       for (Eigen::Index k = 0; k < f.size(); ++k) f[k] -= loading.force_at(s, static_cast<std::size_t>(k));
   }
+  /// R without the multiplier form's E x (residual_callback adds it).
   void residual(const double* x, double* R) {
     expand(x);
     force();
     Eigen::Map<Eigen::VectorXd>(R, T.cols()) = T.transpose() * f;
+    for (PetscInt k = 0; k < lambdas; ++k) R[T.cols() + k] = -k_E * loading.target(s, std::size_t(k));
   }
   RowSparse jacobian(const double* x) {
     expand(x);
     model.prepare_tangent(u.data());
-    return reduced_stiffness(model, *rows);
+    return spread ? own_stiffness(model, rows->index, column, global) : reduced_stiffness(model, *rows);
   }
 };
 
@@ -96,11 +188,21 @@ PetscErrorCode residual_callback(SNES snes, Vec x, Vec r, void* ctx) {
   } catch (...) {
     sys->error = std::current_exception();
   }
-  bool finite = true;
+  int finite = 1;
   for (PetscInt k = 0; k < sys->free(); ++k) finite = finite && std::isfinite(ra[k]);
   VecRestoreArray(r, &ra);
   VecRestoreArrayRead(x, &xa);
   if (sys->error) return PETSC_ERR_USER;
+  if (sys->E.p) {
+    // The multiplier form: R += [E^T lambda; E u] (every rank has E).
+    Vec Ex = nullptr;
+    e = VecDuplicate(r, &Ex);
+    if (!e) e = MatMult(sys->E.p, x, Ex);
+    if (!e) e = VecAXPY(r, 1.0, Ex);
+    VecDestroy(&Ex);
+    if (e) return e;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &finite, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);  // every rank takes one branch
   // A state whose force is not finite: SNES's line search steps back, or the solve stops.
   return finite ? 0 : SNESSetFunctionDomainError(snes);
 }
@@ -135,19 +237,29 @@ PetscErrorCode jacobian_callback(SNES, Vec x, Mat J, Mat, void* ctx) {
   if (sys->error) return PETSC_ERR_USER;
   PetscLogEventBegin(events.copy, 0, 0, 0, 0);
   const PetscInt* ptr = A.outerIndexPtr();
+  const PetscInt first = sys->first, end = sys->first + sys->free();  // this rank's rows, globally
   if (!sys->assembled) {
-    // The pattern: the tangent rows' (fixed for the run), preallocated exactly.
-    std::vector<PetscInt> lengths(static_cast<std::size_t>(A.rows()));
-    for (PetscInt r = 0; r < A.rows(); ++r) lengths[static_cast<std::size_t>(r)] = ptr[r + 1] - ptr[r];
-    e = MatXAIJSetPreallocation(J, 1, lengths.data(), nullptr, nullptr, nullptr);
+    // The pattern: the tangent rows' (fixed for the run), preallocated exactly: the columns
+    // of this rank's rows (its diagonal block), and the others'. (The multiplier form's E^T
+    // entries that other ranks add to these rows are allocated as they come.)
+    std::vector<PetscInt> own(static_cast<std::size_t>(sys->free()), 0), other(own.size(), 0);
+    auto count = [&](PetscInt r, PetscInt c) { ++(c >= first && c < end ? own : other)[static_cast<std::size_t>(r)]; };
+    for (PetscInt r = 0; r < A.rows(); ++r)
+      for (PetscInt k = ptr[r]; k < ptr[r + 1]; ++k) count(r, A.innerIndexPtr()[k]);
+    for (std::size_t k = 0; k < sys->e_row.size(); ++k)
+      if (sys->e_row[k] >= first && sys->e_row[k] < end) count(sys->e_row[k] - first, sys->e_col[k]);
+    e = MatXAIJSetPreallocation(J, 1, own.data(), other.data(), nullptr, nullptr);
     if (!e) e = MatSetOption(J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE);
     if (e) return e;
     sys->assembled = true;
   } else if ((e = MatZeroEntries(J))) {
     return e;
   }
-  for (PetscInt r = 0; r < A.rows() && !e; ++r)
-    e = MatSetValues(J, 1, &r, ptr[r + 1] - ptr[r], A.innerIndexPtr() + ptr[r], A.valuePtr() + ptr[r], INSERT_VALUES);
+  for (PetscInt r = 0; r < A.rows() && !e; ++r) {
+    const PetscInt row = first + r;
+    e = MatSetValues(J, 1, &row, ptr[r + 1] - ptr[r], A.innerIndexPtr() + ptr[r], A.valuePtr() + ptr[r], ADD_VALUES);
+  }
+  if (!e) e = sys->add_constraints(J);
   if (!e) e = MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY);
   if (!e) e = MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY);
   PetscLogEventEnd(events.copy, 0, 0, 0, 0);
@@ -178,28 +290,37 @@ std::vector<Eigen::VectorXd> rigid_body_modes(const NewtonOptions& opt, const Ta
   return modes;
 }
 
-/// GAMG's near-null space in reduced coordinates (each mode's free entries), orthonormal.
+/// GAMG's near-null space in reduced coordinates (each mode's free entries), made orthonormal
+/// over the ranks (Gram-Schmidt, twice); a mode the supports leave (almost) nothing of is
+/// dropped.
 void set_near_null_space(Mat J, const Reduced& sys, const std::vector<Eigen::VectorXd>& modes) {
   if (modes.empty()) return;
-  const Eigen::Index m = static_cast<Eigen::Index>(modes.size());
-  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(sys.T.cols(), m);
-  // T is the identity on the free dofs: a column's unit entry is its own dof.
-  for (Eigen::Index col = 0; col < sys.T.cols(); ++col)
-    for (Sparse::InnerIterator it(sys.T, col); it; ++it)
-      if (it.value() == 1.0)
-        for (Eigen::Index c = 0; c < m; ++c) B(col, c) = modes[c][it.row()];
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(B);
-  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(B.rows(), m);
-  std::vector<Vec> vecs(static_cast<std::size_t>(m), nullptr);
-  for (Eigen::Index c = 0; c < m; ++c) {
-    check(MatCreateVecs(J, &vecs[c], nullptr), "MatCreateVecs");
+  std::vector<Vec> vecs;
+  for (const Eigen::VectorXd& mode : modes) {
+    Vec v = nullptr;
+    check(MatCreateVecs(J, &v, nullptr), "MatCreateVecs");
     PetscScalar* a = nullptr;
-    check(VecGetArray(vecs[c], &a), "VecGetArray");
-    std::copy_n(Q.col(c).data(), B.rows(), a);
-    check(VecRestoreArray(vecs[c], &a), "VecRestoreArray");
+    check(VecGetArray(v, &a), "VecGetArray");
+    // T is the identity on the free dofs: a column's unit entry is its own dof.
+    for (Eigen::Index col = 0; col < sys.T.cols(); ++col)
+      for (Sparse::InnerIterator it(sys.T, col); it; ++it)
+        if (it.value() == 1.0) a[col] = mode[it.row()];
+    check(VecRestoreArray(v, &a), "VecRestoreArray");
+    PetscReal before = 0.0, after = 0.0;
+    check(VecNorm(v, NORM_2, &before), "VecNorm");
+    for (int pass = 0; pass < 2; ++pass)
+      for (Vec q : vecs) {
+        PetscScalar along = 0.0;
+        check(VecDot(v, q, &along), "VecDot");
+        check(VecAXPY(v, -along, q), "VecAXPY");
+      }
+    check(VecNormalize(v, &after), "VecNormalize");
+    if (after > 1e-8 * before) vecs.push_back(v);
+    else VecDestroy(&v);
   }
+  if (vecs.empty()) return;
   MatNullSpace space = nullptr;
-  check(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(m), vecs.data(), &space),
+  check(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(vecs.size()), vecs.data(), &space),
         "MatNullSpaceCreate");
   check(MatSetNearNullSpace(J, space), "MatSetNearNullSpace");
   MatNullSpaceDestroy(&space);
@@ -228,6 +349,9 @@ void configure(SNES snes, Mat J, const Reduced& sys, const NewtonOptions& opt) {
     PetscBool given = PETSC_FALSE;
     check(PetscOptionsHasName(nullptr, nullptr, "-mat_mumps_icntl_24", &given), "PetscOptionsHasName");
     if (!given) check(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_24", "1"), "PetscOptionsSetValue");
+  } else if (opt.linear_solver == "gamg" && sys.E.p) {
+    throw InputError("solver.linear_solver: gamg takes constraints on their particles only over MPI ranks (a face-"
+                     "located support, at: face, makes Newton's system a saddle point there): use mumps");
   } else if (opt.linear_solver == "gamg") {
     // Conjugate gradients for a symmetric tangent, GMRES otherwise. Each linear solve goes
     // a decade below the Newton tolerance, so an elastic step needs one Newton iteration.
@@ -299,6 +423,7 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
   {
     // The first guess: u's free entries (T is the identity on them).
     PetscScalar* a = nullptr;
+    check(VecSet(x.p, 0.0), "VecSet");  // (the multipliers start at zero)
     check(VecGetArray(x.p, &a), "VecGetArray");
     for (Eigen::Index col = 0; col < sys.T.cols(); ++col)
       for (Sparse::InnerIterator it(sys.T, col); it; ++it)
@@ -337,15 +462,26 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
       check(VecRestoreArrayRead(x.p, &a), "VecRestoreArrayRead");
     }
     sys.force();
-    const Eigen::VectorXd R = sys.T.transpose() * sys.f;
-    double reaction_norm = 0.0;
+    Eigen::VectorXd R = sys.T.transpose() * sys.f;
+    if (sys.E.p) {
+      // The multiplier form: the balance with the constraints' forces E^T lambda.
+      check(MatMult(sys.E.p, x.p, r.p), "MatMult");
+      const PetscScalar* a = nullptr;
+      check(VecGetArrayRead(r.p, &a), "VecGetArrayRead");
+      R += Eigen::Map<const Eigen::VectorXd>(a, R.size());
+      check(VecRestoreArrayRead(r.p, &a), "VecRestoreArrayRead");
+    }
+    // Squared norms of the residual, the reactions, the applied force and u, over the ranks.
+    double sums[4] = {R.squaredNorm(), 0.0, loading.force_norm(sys.s), sys.u.squaredNorm()};
+    sums[2] *= sums[2];
     for (const auto dof : loading.fixed) {
       const double fi = sys.f[static_cast<Eigen::Index>(dof)] + loading.force_at(sys.s, static_cast<std::size_t>(dof));
-      reaction_norm += fi * fi;
+      sums[1] += fi * fi;
     }
-    const double load = std::max(loading.force_norm(sys.s), std::sqrt(reaction_norm));
-    const double relative = load > 0.0 ? R.norm() / load : R.norm();
-    if (!std::isfinite(relative) || !std::isfinite(sys.u.norm())) {
+    model.sum_across_ranks(sums, 4);
+    const double load = std::sqrt(std::max(sums[2], sums[1]));
+    const double relative = load > 0.0 ? std::sqrt(sums[0]) / load : std::sqrt(sums[0]);
+    if (!std::isfinite(relative) || !std::isfinite(sums[3])) {
       check(VecCopy(x_start.p, x.p), "VecCopy");
       rep.diverged = true;
       rep.diverged_at = step;

@@ -38,6 +38,29 @@ struct Accumulator {
   }
 };
 
+/// Rows of (column, value) pairs, each sorted, as CSR with `columns` columns (the rows
+/// released as they are copied). Throws InputError past 2^31 - 1 nonzeros.
+RowSparse to_csr(std::vector<Row>& rows, int columns) {
+  std::int64_t entries = 0;
+  for (const Row& row : rows) entries += static_cast<std::int64_t>(row.size());
+  if (entries > std::numeric_limits<int>::max())
+    throw InputError("the reduced stiffness has " + std::to_string(entries) +
+                     " nonzeros, more than 32-bit indices hold (2^31 - 1): use solver.type adr");
+  RowSparse K(static_cast<int>(rows.size()), columns);
+  std::vector<int> start(rows.size() + 1, 0);
+  for (std::size_t r = 0; r < rows.size(); ++r) start[r + 1] = start[r] + static_cast<int>(rows[r].size());
+  K.resizeNonZeros(start.back());
+  std::copy(start.begin(), start.end(), K.outerIndexPtr());
+  parallel_for(rows.size(), [&](std::size_t r) {
+    for (std::size_t k = 0; k < rows[r].size(); ++k) {
+      K.innerIndexPtr()[start[r] + k] = rows[r][k].first;
+      K.valuePtr()[start[r] + k] = rows[r][k].second;
+    }
+    Row().swap(rows[r]);
+  });
+  return K;
+}
+
 }  // namespace
 
 TRows::TRows(const Sparse& T, const std::vector<std::int64_t>& free_index) : index(free_index), fixed(T.rows()) {
@@ -101,25 +124,31 @@ RowSparse reduced_stiffness(const TangentModel& model, const TRows& t) {
       for (const auto& [c, v] : fixed_rows[static_cast<std::size_t>(g)]) acc.add(c, x * v);
     acc.take(row);
   }
-  // 3. CSR.
-  std::int64_t entries = 0;
-  for (const Row& row : rows) entries += static_cast<std::int64_t>(row.size());
-  if (entries > std::numeric_limits<int>::max())
-    throw InputError("the reduced stiffness has " + std::to_string(entries) +
-                     " nonzeros, more than 32-bit indices hold (2^31 - 1): use solver.type adr");
-  RowSparse K(t.columns, t.columns);
-  std::vector<int> start(rows.size() + 1, 0);
-  for (std::size_t r = 0; r < rows.size(); ++r) start[r + 1] = start[r] + static_cast<int>(rows[r].size());
-  K.resizeNonZeros(start.back());
-  std::copy(start.begin(), start.end(), K.outerIndexPtr());
-  parallel_for(rows.size(), [&](std::size_t r) {
-    for (std::size_t k = 0; k < rows[r].size(); ++k) {
-      K.innerIndexPtr()[start[r] + k] = rows[r][k].first;
-      K.valuePtr()[start[r] + k] = rows[r][k].second;
+  return to_csr(rows, t.columns);
+}
+
+RowSparse own_stiffness(const TangentModel& model, const std::vector<std::int64_t>& free_index,
+                        const std::vector<int>& column, int columns) {
+  const int d = model.dofs_per_particle();
+  int own = 0;
+  for (const auto k : free_index) own += k >= 0 ? 1 : 0;
+  std::vector<Row> rows(static_cast<std::size_t>(own));
+  model.visit_tangent_rows([&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
+    for (int a = 0; a < d; ++a) {
+      const std::int64_t r = free_index[i * d + a];
+      if (r < 0) continue;
+      Row& row = rows[static_cast<std::size_t>(r)];
+      row.clear();
+      row.reserve(cols.size() * d);
+      for (std::size_t q = 0; q < cols.size(); ++q)
+        for (int b = 0; b < d; ++b) {
+          const int c = column[static_cast<std::size_t>(cols[q]) * d + b];
+          if (c >= 0) row.emplace_back(c, blocks[(q * d + a) * d + b]);
+        }
+      std::sort(row.begin(), row.end());  // the ghosts' global numbers come in no order
     }
-    Row().swap(rows[r]);
   });
-  return K;
+  return to_csr(rows, columns);
 }
 
 }  // namespace perinom::detail
