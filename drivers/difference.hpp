@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "perinom/io/json_writer.hpp"
+#include "perinom/models/model.hpp"
 #include "perinom/solvers/adr.hpp"
 
 namespace perinom::cli {
@@ -15,14 +16,16 @@ struct Difference {
   double relative_max = 0.0;  ///< max |a - b| / max |b|
 };
 
-/// a against the reference b (same length); plain norms where b is zero.
-inline Difference difference(const std::vector<double>& a, const std::vector<double>& b) {
-  double d2 = 0, b2 = 0, dmax = 0, bmax = 0;
+/// a against the reference b (same length); plain norms where b is zero. Over MPI ranks
+/// (`ranks` the rank's model, a and b its own values) the norms are the whole body's.
+inline Difference difference(const std::vector<double>& a, const std::vector<double>& b, const Model* ranks = nullptr) {
+  double sum[2] = {0, 0}, max[2] = {0, 0};  // |a - b|^2, |b|^2; max |a - b|, max |b|
   for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
-    d2 += (a[k] - b[k]) * (a[k] - b[k]), b2 += b[k] * b[k];
-    dmax = std::max(dmax, std::abs(a[k] - b[k])), bmax = std::max(bmax, std::abs(b[k]));
+    sum[0] += (a[k] - b[k]) * (a[k] - b[k]), sum[1] += b[k] * b[k];
+    max[0] = std::max(max[0], std::abs(a[k] - b[k])), max[1] = std::max(max[1], std::abs(b[k]));
   }
-  return {b2 > 0 ? std::sqrt(d2 / b2) : std::sqrt(d2), bmax > 0 ? dmax / bmax : dmax};
+  if (ranks) ranks->sum_across_ranks(sum, 2), ranks->max_across_ranks(max, 2);
+  return {sum[1] > 0 ? std::sqrt(sum[0] / sum[1]) : std::sqrt(sum[0]), max[1] > 0 ? max[0] / max[1] : max[0]};
 }
 
 /// What every Newton check writes into summary.json `check`: the two differences (of u and of

@@ -1,6 +1,7 @@
 #include "rank_load_path.hpp"
 
 #include "perinom/scene/registry.hpp"
+#include "rank_newton.hpp"
 
 namespace perinom::cli {
 namespace {
@@ -29,16 +30,6 @@ std::vector<double> probe_row(const RankRun& run, const LoadStepRecord& r, const
 }
 
 }  // namespace
-
-NewtonOptions rank_newton_options(const SolverSpec& solver, const RankRun& run) {
-  NewtonOptions o = newton_options(solver);
-  if (o.linear_solver == "gamg") {
-    const int d = run.local.cloud.dim;
-    o.dimension = d;
-    o.positions.assign(run.local.cloud.x.begin(), run.local.cloud.x.begin() + std::ptrdiff_t(run.part.owned * d));
-  }
-  return o;
-}
 
 SolveReport run_rank_load_path(const RankRun& run, DistributedModel& model, std::vector<LoadStage>& stages,
                                const std::string& dir, std::vector<double>& u, io::PvdSeries& series,

@@ -16,9 +16,6 @@ namespace perinom::cli {
 /// values are gathered into `probes` (rank 0's copy complete), and after the steps
 /// output.vtk_steps names (or every output.vtk_every) every rank writes its snapshot piece
 /// (last_snapshot: the last step written). Every rank calls it.
-/// Newton's options for a rank: GAMG's rigid-body modes from the owned particles' positions.
-NewtonOptions rank_newton_options(const SolverSpec& solver, const RankRun& run);
-
 SolveReport run_rank_load_path(const RankRun& run, DistributedModel& model, std::vector<LoadStage>& stages,
                                const std::string& dir, std::vector<double>& u, io::PvdSeries& series,
                                ProbeHistory& probes, std::int64_t& last_snapshot);

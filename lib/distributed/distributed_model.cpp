@@ -58,4 +58,10 @@ std::vector<OutputField> DistributedModel::output_fields(const double* u, bool p
   return fields;
 }
 
+std::vector<double> DistributedModel::stress_measure(const double* u) const {
+  std::vector<double> s = local_.stress_measure(local_state(u).data());
+  s.resize(s.size() / local_.particles() * part_.owned);
+  return s;
+}
+
 }  // namespace perinom

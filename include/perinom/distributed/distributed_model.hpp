@@ -32,6 +32,7 @@ class DistributedModel : public TangentModel, public ModelHistory {
   /// The local model's fields at the owned particles.
   std::vector<OutputField> output_fields(const double* u, bool probe_fields = false,
                                          bool gradients = false) const override;
+  std::vector<double> stress_measure(const double* u) const override;  ///< the owned particles'
   void sum_across_ranks(double* values, int count) const override { sum_over_ranks(values, count); }
   void max_across_ranks(double* values, int count) const override { max_over_ranks(values, count); }
 
