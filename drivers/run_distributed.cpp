@@ -7,7 +7,8 @@
 // Rank 0 prints and writes the history, the probes and summary.json; every rank writes its
 // piece of each snapshot. Partial, and refused otherwise, naming the key: correspondence
 // scenes of the classical or consistent formulation on a lattice or a body from files (the
-// consistent correction solved over the ranks), radius families, small strain, elastic or
+// consistent correction solved over the ranks), radius or k-nearest families (the latter
+// searched on the whole cloud), small strain, elastic or
 // Drucker-Prager, constraints on their particles or at the face (Galerkin, their multipliers
 // solved over the ranks: Loading::ranks), `constraints: rigid_body` (pinned on the whole
 // cloud), tractions and pressures, adr, verlet, newton (constraints on their particles
@@ -59,7 +60,6 @@ void require_distributed(const Scene& s, const Options& opt) {
   if (s.model.type != "correspondence") refuse("model.type", s.model.type);
   if (s.model.formulation != "classical" && s.model.formulation != "consistent")
     refuse("model.formulation", "the " + s.model.formulation + " formulation (its strong rows read the whole body)");
-  if (s.discretization.horizon_neighbors > 0) refuse("discretization.horizon.neighbors", "k-nearest families");
   if (s.model.kinematics != "small_strain") refuse("model.kinematics", s.model.kinematics);
   if (s.solver.type != "adr" && s.solver.type != "verlet" && s.solver.type != "newton" &&
       !(s.solver.type == "lbc" && s.load_path()))
@@ -104,13 +104,19 @@ int run_distributed(const Options& opt) {
   timer.start("discretization");
   const Problem frame = build_problem_frame(scene);
   const int d = frame.cloud.dim;
-  const double horizon = scene.discretization.horizon_ratio * scene.discretization.dx;
+  // k-nearest families are searched on the whole cloud (the part's own search could break
+  // the ties at the k-th distance otherwise), and the part reaches their largest support.
+  const bool nearest = scene.discretization.horizon_neighbors > 0;
+  Families whole = nearest ? scene_families(scene, frame.cloud) : Families{};
+  const double horizon = nearest ? *std::max_element(whole.support.begin(), whole.support.end())
+                                 : scene.discretization.horizon_ratio * scene.discretization.dx;
   const LocalPart part = local_part(frame.cloud, morton_order(frame.cloud), world.size, world.rank, horizon);
   Problem local;
   local.scene = scene;
   local.cloud = subcloud(frame.cloud, part.particles);
   local.probes = frame.probes;  // their specs (the readout asks whether one reconstructs)
-  const Families families = scene_families(scene, local.cloud);
+  const Families families = nearest ? local_families(whole, part) : scene_families(scene, local.cloud);
+  whole = Families{};
   const RankMemory estimate = require_rank_memory(scene, double(families.bonds()), double(families.particles()), opt.max_memory);
   timer.start("operators");
   // The consistent formulation: the facets of the owned and near particles (the rows that

@@ -95,4 +95,19 @@ PointCloud subcloud(const PointCloud& cloud, const std::vector<ParticleId>& part
   return out;
 }
 
+Families local_families(const Families& whole, const LocalPart& part) {
+  std::vector<std::int64_t> local(whole.particles(), -1);
+  for (std::size_t p = 0; p < part.particles.size(); ++p) local[part.particles[p]] = std::int64_t(p);
+  Families f;
+  f.offsets.reserve(part.particles.size() + 1);
+  f.support.reserve(part.particles.size());
+  for (const ParticleId i : part.particles) {
+    for (Offset k = whole.begin(i); k < whole.end(i); ++k)
+      if (const std::int64_t j = local[whole.neighbors[k]]; j >= 0) f.neighbors.push_back(ParticleId(j));
+    f.offsets.push_back(Offset(f.neighbors.size()));
+    f.support.push_back(whole.support[i]);
+  }
+  return f;
+}
+
 }  // namespace perinom

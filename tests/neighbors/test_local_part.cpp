@@ -151,3 +151,46 @@ TEST_CASE("limit_rows is refused for formulations whose rows read the whole body
   CHECK_THROWS_AS(model.limit_rows(10, 20), std::logic_error);
   CHECK_THROWS_AS(model.limit_rows(cloud.size() + 1, 1), std::logic_error);
 }
+
+TEST_CASE("k-nearest families restricted to a part keep the owned and near families whole", "[neighbors][partition]") {
+  // A regular lattice: ties at the k-th distance everywhere, so the families are searched on
+  // the whole cloud and restricted (local_families), the part cut at the largest support.
+  for (const int dim : {2, 3}) {
+    const PointCloud cloud = dim == 2 ? test::lattice(2, 19, 0.0, 1) : test::lattice(3, 9, 0.0, 1);
+    const Families whole = knn_families(cloud, dim == 2 ? 12 : 26);
+    const double reach = *std::max_element(whole.support.begin(), whole.support.end());
+    CorrespondenceOptions o{Influence::inverse_square, 0.5, Formulation::classical};
+    CorrespondenceModel serial(cloud, whole, test::elastic_material(dim), o);
+    const std::vector<double> u = test::random_field(serial.dofs(), 1e-3, 3);
+    std::vector<double> f(serial.dofs());
+    serial.internal_force(u.data(), f.data());
+    const double scale = test::max_abs(f);
+    for (const int ranks : {2, 3}) {
+      for (int r = 0; r < ranks; ++r) {
+        INFO("dimension " << dim << ", rank " << r << " of " << ranks);
+        const LocalPart part = local_part(cloud, morton_order(cloud), ranks, r, reach);
+        const Families fam = local_families(whole, part);
+        REQUIRE(fam.particles() == part.particles.size());
+        for (std::size_t p = 0; p < part.owned + part.near; ++p) {
+          const ParticleId i = part.particles[p];
+          std::set<ParticleId> mine, expected(whole.neighbors.begin() + whole.begin(i), whole.neighbors.begin() + whole.end(i));
+          for (Offset k = fam.begin(p); k < fam.end(p); ++k) mine.insert(part.particles[fam.neighbors[k]]);
+          CHECK(mine == expected);
+          CHECK(fam.support[p] == whole.support[i]);
+        }
+        const PointCloud local = subcloud(cloud, part.particles);
+        CorrespondenceModel model(local, fam, test::elastic_material(dim), o);
+        model.limit_rows(part.owned + part.near, part.owned);
+        std::vector<double> ul(model.dofs()), fl(model.dofs());
+        for (std::size_t p = 0; p < part.particles.size(); ++p)
+          for (int a = 0; a < dim; ++a) ul[p * dim + a] = u[part.particles[p] * dim + a];
+        model.internal_force(ul.data(), fl.data());
+        double worst = 0.0;
+        for (std::size_t p = 0; p < part.owned; ++p)
+          for (int a = 0; a < dim; ++a)
+            worst = std::max(worst, std::abs(fl[p * dim + a] - f[part.particles[p] * dim + a]) / scale);
+        CHECK(worst < 1e-12);
+      }
+    }
+  }
+}

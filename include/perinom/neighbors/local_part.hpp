@@ -17,6 +17,7 @@
 
 #include "perinom/core/types.hpp"
 #include "perinom/geometry/point_cloud.hpp"
+#include "perinom/neighbors/families.hpp"
 
 namespace perinom {
 
@@ -45,5 +46,12 @@ std::unordered_map<ParticleId, std::size_t> owned_index(const LocalPart& part);
 
 /// The listed particles of `cloud` as a cloud of their own, in that order.
 PointCloud subcloud(const PointCloud& cloud, const std::vector<ParticleId>& particles);
+
+/// The whole cloud's families restricted to the part, in its local numbering: each local
+/// particle keeps the members that are local (the owned and near ones keep all, when the part
+/// was cut with a horizon at least the largest support) and its support. For families that a
+/// search of the part alone could not reproduce: k-nearest ones, whose ties the k-d tree
+/// breaks by the cloud it searches.
+Families local_families(const Families& whole, const LocalPart& part);
 
 }  // namespace perinom
