@@ -8,7 +8,7 @@
 // piece of each snapshot. Partial, and refused otherwise, naming the key: correspondence
 // scenes of the classical or consistent formulation on a lattice or a body from files (the
 // consistent correction solved over the ranks), radius or k-nearest families (the latter
-// searched on the whole cloud), small strain, elastic or
+// searched on the whole cloud), small strain or finite rotation (no follower pressure), elastic or
 // Drucker-Prager, constraints on their particles or at the face (Galerkin, their multipliers
 // solved over the ranks: Loading::ranks), `constraints: rigid_body` (pinned on the whole
 // cloud), tractions and pressures, adr, verlet, newton (constraints on their particles
@@ -47,20 +47,33 @@
 namespace perinom::cli {
 namespace {
 
+/// Whether a boundary item of the scene or of a stage is a pressure.
+bool has_pressure(const Scene& s) {
+  auto any = [](const std::vector<BoundarySpec>& list) {
+    return std::any_of(list.begin(), list.end(), [](const BoundarySpec& b) { return b.pressure.has_value(); });
+  };
+  return any(s.boundary) || std::any_of(s.stages.begin(), s.stages.end(), [&](const StageSpec& st) { return any(st.boundary); });
+}
+
 /// Refuses, naming the key, what the distributed run does not do yet.
 void require_distributed(const Scene& s, const Options& opt) {
   auto refuse = [&](const std::string& key, const std::string& what) {
     throw InputError(s.source + ": " + key + ": " + what +
                      " is not distributed yet (mpirun -np R perinom run distributes correspondence scenes of the "
                      "classical or consistent formulation on a box or a body from files, elastic or drucker_prager at "
-                     "small strain, solved by adr, verlet or newton (mumps or gamg), or in load steps and stages by adr "
+                     "small strain or finite rotation, solved by adr, verlet or newton (mumps or gamg), or in load steps and stages by adr "
                      "or lbc, with constraints on their particles or at the face or rigid_body, tractions and pressures); run it without mpirun");
   };
   if (!opt.restart.empty()) refuse("--restart", "a restart");
   if (s.model.type != "correspondence") refuse("model.type", s.model.type);
+  // Finite rotation is pointwise (the law's polar decomposition); a follower pressure is not
+  // (its force and tangent act on the ranks' facets otherwise than serially: the biaxial
+  // example's reactions differed by 0.2%).
+  if (s.model.kinematics == "finite_rotation" && s.model.follower_pressure && has_pressure(s))
+    refuse("model.follower_pressure", "a follower pressure (finite_rotation turns pressures with the surface; "
+           "follower_pressure: false keeps them in the reference configuration)");
   if (s.model.formulation != "classical" && s.model.formulation != "consistent")
     refuse("model.formulation", "the " + s.model.formulation + " formulation (its strong rows read the whole body)");
-  if (s.model.kinematics != "small_strain") refuse("model.kinematics", s.model.kinematics);
   if (s.solver.type != "adr" && s.solver.type != "verlet" && s.solver.type != "newton" &&
       !(s.solver.type == "lbc" && s.load_path()))
     refuse("solver.type", s.solver.type);
