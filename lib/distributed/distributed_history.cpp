@@ -8,6 +8,12 @@
 
 namespace perinom {
 
+ModelHistory& DistributedModel::local_history() const {
+  ModelHistory* h = local_.history();
+  if (!h) throw std::logic_error("DistributedModel: the local model keeps no history");
+  return *h;
+}
+
 void DistributedModel::share_history(HistoryState state) {
   const std::size_t m = values_per_particle(), n = state.flags.size(), block = m + 1;
   if (!history_halo_) {
@@ -24,15 +30,15 @@ void DistributedModel::share_history(HistoryState state) {
     std::copy_n(shared_.begin() + std::ptrdiff_t(i * block), m, state.values.begin() + std::ptrdiff_t(i * m));
     state.flags[i] = static_cast<std::uint8_t>(shared_[i * block + m]);
   }
-  local_.restore_history(state);
+  local_history().restore_history(state);
 }
 
-void DistributedModel::set_history_mode(HistoryMode mode) { local_.set_history_mode(mode); }
+void DistributedModel::set_history_mode(HistoryMode mode) { local_history().set_history_mode(mode); }
 
 std::size_t DistributedModel::flag_violations(double tolerance) {
-  const std::vector<std::uint8_t> before = local_.save_history().flags;
-  local_.flag_violations(tolerance);
-  HistoryState now = local_.save_history();
+  const std::vector<std::uint8_t> before = local_history().save_history().flags;
+  local_history().flag_violations(tolerance);
+  HistoryState now = local_history().save_history();
   double count = 0.0;
   for (std::size_t i = 0; i < part_.owned; ++i) count += now.flags[i] && !before[i] ? 1.0 : 0.0;
   share_history(std::move(now));
@@ -40,15 +46,15 @@ std::size_t DistributedModel::flag_violations(double tolerance) {
 }
 
 std::vector<double> DistributedModel::history_variable() const {
-  std::vector<double> xi = local_.history_variable();
+  std::vector<double> xi = local_history().history_variable();
   xi.resize(part_.owned);
   return xi;
 }
 
-std::size_t DistributedModel::values_per_particle() const { return local_.values_per_particle(); }
+std::size_t DistributedModel::values_per_particle() const { return local_history().values_per_particle(); }
 
 HistoryState DistributedModel::save_history() const {
-  HistoryState s = local_.save_history();
+  HistoryState s = local_history().save_history();
   s.values.resize(part_.owned * values_per_particle());
   s.flags.resize(part_.owned);
   return s;
@@ -59,22 +65,22 @@ void DistributedModel::restore_history(const HistoryState& mine) {
   if (mine.flags.size() != part_.owned || mine.values.size() != part_.owned * m)
     throw std::invalid_argument("DistributedModel: the history holds " + std::to_string(mine.flags.size()) +
                                 " particles, the rank owns " + std::to_string(part_.owned));
-  HistoryState all = local_.save_history();
+  HistoryState all = local_history().save_history();
   std::copy(mine.values.begin(), mine.values.end(), all.values.begin());
   std::copy(mine.flags.begin(), mine.flags.end(), all.flags.begin());
   share_history(std::move(all));
 }
 
-void DistributedModel::reset_history() { local_.reset_history(); }
+void DistributedModel::reset_history() { local_history().reset_history(); }
 
 void DistributedModel::commit(const double* u) {
-  local_.commit(local_state(u).data());
-  share_history(local_.save_history());
+  local_history().commit(local_state(u).data());
+  share_history(local_history().save_history());
 }
 
 void DistributedModel::commit_trial() {
-  local_.commit_trial();
-  share_history(local_.save_history());
+  local_history().commit_trial();
+  share_history(local_history().save_history());
 }
 
 }  // namespace perinom

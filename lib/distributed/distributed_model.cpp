@@ -5,7 +5,7 @@
 
 namespace perinom {
 
-DistributedModel::DistributedModel(CorrespondenceModel& local, const LocalPart& part)
+DistributedModel::DistributedModel(LocalModel& local, const LocalPart& part)
     : local_(local), part_(part), u_local_(local.dofs(), 0.0), f_local_(local.dofs(), 0.0) {
   local_.limit_rows(part.owned + part.near, part.owned);
   const std::vector<std::int64_t> ghosts(part.global.begin() + std::ptrdiff_t(part.owned), part.global.end());

@@ -1,6 +1,7 @@
 #include "perinom/geometry/plate_cloud.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "perinom/core/error.hpp"
@@ -75,6 +76,32 @@ PlateCloud make_plate_cloud(const BoxGeometry& box, double dx, const PlateEdges&
       p.sign.push_back(sx * sy);
     }
   c.volume.assign(c.x.size() / 2, cell * box.thickness);
+  return p;
+}
+
+PlateCloud sub_plate(const PlateCloud& whole, const std::vector<ParticleId>& nodes) {
+  PlateCloud p;
+  PointCloud& c = p.cloud;
+  c.dim = 2;
+  c.dx = whole.cloud.dx;
+  c.spacing = whole.cloud.spacing;
+  std::vector<std::int64_t> local(whole.physical, -1);
+  auto add = [&](std::size_t i) {
+    c.x.insert(c.x.end(), whole.cloud.x.begin() + std::ptrdiff_t(2 * i), whole.cloud.x.begin() + std::ptrdiff_t(2 * i + 2));
+    c.volume.push_back(whole.cloud.volume[i]);
+  };
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    local.at(nodes[k]) = std::int64_t(k);
+    add(nodes[k]);
+    p.area.push_back(whole.area[nodes[k]]);
+  }
+  p.physical = nodes.size();
+  for (std::size_t g = 0; g < whole.image.size(); ++g) {
+    if (local[whole.image[g]] < 0) continue;
+    add(whole.physical + g);
+    p.image.push_back(static_cast<ParticleId>(local[whole.image[g]]));
+    p.sign.push_back(whole.sign[g]);
+  }
   return p;
 }
 

@@ -1,6 +1,8 @@
 #include "perinom/models/thin_plate.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "perinom/operators/bond_weights.hpp"
 #include "perinom/operators/row_accumulator.hpp"
@@ -12,11 +14,13 @@ ThinPlateModel::ThinPlateModel(PlateCloud plate, const Families& families, const
       D0_(opt.E * std::pow(opt.thickness, 3) / (12.0 * (1.0 - opt.nu * opt.nu))) {
   const PointCloud& c = plate_.cloud;
   const std::size_t n = c.size(), phys = plate_.physical;
-  const BondWeights bw = bond_weights(c, families, opt.influence);
-  op_ = NonlocalOperator(c, families, bw, OperatorOptions{2, true});
+  const BondWeights bw = bond_weights(c, families, opt.influence, opt.fitted_rows);
+  OperatorOptions o{2, true};
+  o.fitted_rows = opt.fitted_rows;
+  op_ = NonlocalOperator(c, families, bw, o);
   if (opt.stabilization > 0.0) {
-    std::vector<double> area(n, 0.0);
-    std::copy(plate_.area.begin(), plate_.area.end(), area.begin());
+    std::vector<double> area(n, 0.0);  // the ghosts and the unfitted nodes carry none
+    std::copy(plate_.area.begin(), plate_.area.begin() + std::ptrdiff_t(std::min(phys, opt.fitted_rows)), area.begin());
     S_.emplace(c, op_, bending_scale(op_, opt.stabilization, D0_, std::move(area)));
   }
   ghost_off_.assign(phys + 1, 0);
@@ -54,7 +58,7 @@ void ThinPlateModel::moment(const double* k, double* M) const {
 void ThinPlateModel::internal_force(const double* w, double* f) {
   derivatives(w);
   const std::size_t phys = plate_.physical;
-  for (std::size_t i = 0; i < phys; ++i) {
+  for (std::size_t i = 0; i < std::min(phys, evaluated_); ++i) {  // the others' Q stays zero
     double M[3];
     moment(hess_.data() + i * 3, M);
     const double A = plate_.area[i];
@@ -67,6 +71,13 @@ void ThinPlateModel::internal_force(const double* w, double* f) {
 }
 
 double ThinPlateModel::energy(const double* w) {
+  if (written_ < plate_.physical) {  // a rank's share: W = 1/2 w . f(w), W being quadratic
+    std::vector<double> f(plate_.physical);
+    internal_force(w, f.data());
+    double W = 0.0;
+    for (std::size_t r = 0; r < written_; ++r) W += 0.5 * w[r] * f[r];
+    return W;
+  }
   derivatives(w);
   double W = 0.0;
   for (std::size_t i = 0; i < plate_.physical; ++i) {
@@ -84,22 +95,17 @@ std::vector<double> ThinPlateModel::lumped_mass() const {
   return m;
 }
 
-void ThinPlateModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
-  const std::size_t phys = plate_.physical;
-  const NonlocalOperator& H = op_;
-  constexpr Derivative hessian = Derivative::hessian;
-  auto physical_of = [&](ParticleId b, double& s) {
-    if (static_cast<std::size_t>(b) < phys) return s = 1.0, b;
-    const std::size_t g = b - phys;
-    return s = plate_.sign[g], plate_.image[g];
-  };
-  auto dot3 = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+RowFill ThinPlateModel::row_fill() const {
   // The row of r and those of its ghosts, folded: a ghost's row adds with its sign.
-  auto fill = [&, this](std::size_t r, RowAccumulator& acc) {
+  return [this](std::size_t r, RowAccumulator& acc) {
+    const std::size_t phys = plate_.physical;
+    const NonlocalOperator& H = op_;
+    constexpr Derivative hessian = Derivative::hessian;
     double sa = 1.0;  // the sign of the row being added
     const std::function<void(ParticleId, double)> add = [&](ParticleId b, double v) {
-      double sb;
-      const ParticleId m = physical_of(b, sb);
+      double sb = 1.0;
+      ParticleId m = b;
+      if (static_cast<std::size_t>(b) >= phys) sb = plate_.sign[b - phys], m = plate_.image[b - phys];
       *acc.at(m) += sa * sb * v;
     };
     for (Offset q = -1; q < ghost_off_[r + 1] - ghost_off_[r]; ++q) {
@@ -108,17 +114,25 @@ void ThinPlateModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
       // Bending: K_ab = sum_i A_i h_ia . Dm h_ib over the centres i that see a.
       // (visit_column gives the centre a itself first, with its diagonal.)
       H.visit_column(a, [&](ParticleId i, const double* h_ia) {
-        if (static_cast<std::size_t>(i) >= phys) return;
+        if (static_cast<std::size_t>(i) >= std::min(phys, evaluated_)) return;
         double v[3];
         moment(h_ia, v);
         v[1] *= 2.0;
         for (double& x : v) x *= plate_.area[i];
-        H.visit_row(i, [&](ParticleId j, const double* h_ij) { add(j, dot3(v, h_ij)); }, hessian);
+        H.visit_row(i, [&](ParticleId j, const double* h_ij) { add(j, v[0] * h_ij[0] + v[1] * h_ij[1] + v[2] * h_ij[2]); },
+                    hessian);
       }, hessian);
       if (S_) S_->add_row(a, add);
     }
   };
-  for_each_block_row(phys, phys, 1, [&] { return RowFill(fill); }, visit);
+}
+
+void ThinPlateModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
+  for_each_block_row(plate_.physical, plate_.physical, 1, [this] { return row_fill(); }, visit);
+}
+
+void ThinPlateModel::visit_tangent_rows(const std::vector<ParticleId>& rows, const TangentRowVisitor& visit) const {
+  for_each_block_row(rows, plate_.physical, 1, [this] { return row_fill(); }, visit);
 }
 
 std::vector<double> ThinPlateModel::stiffness_row_sums() const {
@@ -127,6 +141,22 @@ std::vector<double> ThinPlateModel::stiffness_row_sums() const {
     for (const double x : v) sums[r] += std::abs(x);
   });
   return sums;
+}
+
+std::vector<double> ThinPlateModel::stiffness_row_sums(const std::vector<ParticleId>& rows) const {
+  std::vector<double> sums(rows.size(), 0.0);
+  visit_tangent_rows(rows, [&](std::size_t r, const std::vector<ParticleId>&, const std::vector<double>& v) {
+    const auto at = std::lower_bound(rows.begin(), rows.end(), static_cast<ParticleId>(r)) - rows.begin();
+    for (const double x : v) sums[static_cast<std::size_t>(at)] += std::abs(x);
+  });
+  return sums;
+}
+
+void ThinPlateModel::limit_rows(std::size_t evaluated, std::size_t written) {
+  if (written > evaluated || evaluated > std::min(plate_.physical, op_.fitted_rows()))
+    throw std::logic_error("ThinPlateModel::limit_rows: written > evaluated or evaluated beyond the fitted nodes");
+  evaluated_ = evaluated, written_ = written;
+  op_.limit_rows(evaluated, SIZE_MAX);  // every row's transpose: the mirrors' forces fold onto their images
 }
 
 void ThinPlateModel::curvature(const double* w, double* kappa) const {

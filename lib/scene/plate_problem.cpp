@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "perinom/core/error.hpp"
-#include "perinom/scene/problem.hpp"
+#include "perinom/scene/plate_part.hpp"
 
 namespace perinom {
 namespace {
@@ -26,29 +26,20 @@ int ghost_layers(const Scene& s) {
 
 }  // namespace
 
-Problem build_plate_problem(const Scene& s, PhaseTimer* timer) {
-  Problem p;
+PlateFrame plate_frame(const Scene& s) {
+  PlateFrame out;
+  Problem& p = out.problem;
   p.scene = s;
-  if (timer) timer->start("discretization");
-  const std::string horizon = horizon_key(s);
   PlateEdges edges{EdgeSupport::free, EdgeSupport::free, EdgeSupport::free, EdgeSupport::free};
   for (const auto& b : s.boundary)
     if (b.support) edges[b.region.side.axis * 2 + (b.region.side.at_max ? 1 : 0)] = *b.support;
-  const int layers = ghost_layers(s);
-  PlateCloud plate;
+  out.layers = ghost_layers(s);
+  PlateCloud& plate = out.plate;
   try {
-    plate = make_plate_cloud(s.geometry, s.discretization.dx, edges, layers);
+    plate = make_plate_cloud(s.geometry, s.discretization.dx, edges, out.layers);
   } catch (const InputError& e) {
     throw InputError(s.source + ": discretization.dx: " + e.what());
   }
-  const Families families = scene_families(s, plate.cloud);
-  // A family reaches no ghost beyond the last layer while its radius stays below the next one.
-  const double reach = (layers + 1) * std::min(plate.cloud.spacing[0], plate.cloud.spacing[1]) * (1.0 - 1e-9);
-  for (std::size_t i = 0; i < plate.physical; ++i)
-    if (families.support[i] >= reach)
-      throw InputError(s.source + ": " + horizon + ": the families reach beyond the plate's " +
-                       std::to_string(layers) + " ghost layers (use fewer neighbours)");
-  p.bonds = families.bonds();
   // The solvers see the physical nodes, with their quadrature volumes.
   p.cloud.dim = 2;
   p.cloud.dx = s.discretization.dx;
@@ -68,8 +59,7 @@ Problem build_plate_problem(const Scene& s, PhaseTimer* timer) {
     for (const auto i : ids) p.loading.force[i] += *b.pressure * plate.area[i];
   }
   for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
-  if (timer) timer->start("operators");
-  ThinPlateOptions opt;
+  ThinPlateOptions& opt = out.options;
   opt.E = s.material.E;
   opt.nu = s.material.nu;
   opt.density = s.material.density;
@@ -77,11 +67,39 @@ Problem build_plate_problem(const Scene& s, PhaseTimer* timer) {
   opt.influence = s.discretization.weight;
   opt.stabilization = s.model.stabilization;
   opt.edges = edges;
+  return out;
+}
+
+Families plate_families(const Scene& s, const PlateFrame& frame, const PlateCloud& plate, std::size_t rows) {
+  Families families = scene_families(s, plate.cloud);
+  // A family reaches no ghost beyond the last layer while its radius stays below the next one.
+  const double reach = (frame.layers + 1) * std::min(plate.cloud.spacing[0], plate.cloud.spacing[1]) * (1.0 - 1e-9);
+  for (std::size_t i = 0; i < std::min(rows, plate.physical); ++i)
+    if (families.support[i] >= reach)
+      throw InputError(s.source + ": " + horizon_key(s) + ": the families reach beyond the plate's " +
+                       std::to_string(frame.layers) + " ghost layers (use fewer neighbours)");
+  return families;
+}
+
+std::unique_ptr<ThinPlateModel> plate_model(const Scene& s, PlateCloud plate, const Families& families,
+                                            const ThinPlateOptions& opt) {
   try {
-    p.model = std::make_unique<ThinPlateModel>(std::move(plate), families, opt);
+    return std::make_unique<ThinPlateModel>(std::move(plate), families, opt);
   } catch (const InputError& e) {
-    throw InputError(s.source + ": " + horizon + ": " + e.what());
+    throw InputError(s.source + ": " + horizon_key(s) + ": " + e.what());
   }
+}
+
+Problem build_plate_problem(const Scene& s, PhaseTimer* timer) {
+  if (timer) timer->start("discretization");
+  PlateFrame frame = plate_frame(s);
+  Problem p = std::move(frame.problem);
+  const Families families = plate_families(s, frame, frame.plate, frame.plate.physical);
+  // The physical nodes' bonds (a ghost's family is fitted but carries no energy): what the
+  // ranks of a distributed run sum over their owned nodes.
+  p.bonds = std::size_t(families.offsets[frame.plate.physical]);
+  if (timer) timer->start("operators");
+  p.model = plate_model(s, std::move(frame.plate), families, frame.options);
   if (timer) timer->stop();
   return p;
 }

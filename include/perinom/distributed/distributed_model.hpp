@@ -3,7 +3,8 @@
 /// serial solvers run unchanged. Its dofs are the owned particles' (in curve order); a force
 /// evaluation copies them into the local part's array, fills the ghosts from their owners
 /// (Halo) and evaluates the local model, whose rows are limited to the owned ones
-/// (CorrespondenceModel::limit_rows). The solvers' sums go over the ranks. A law with
+/// (LocalModel::limit_rows: a correspondence model or a thin plate). The solvers' sums go
+/// over the ranks. A law with
 /// history (plasticity) is driven through it as a ModelHistory over the ranks
 /// (distributed_history.cpp). Its stiffness rows are the owned particles', their columns the
 /// local part's particles (owned, then ghosts): what Newton over the ranks assembles.
@@ -11,7 +12,8 @@
 #include <vector>
 
 #include "perinom/distributed/ranks.hpp"
-#include "perinom/models/correspondence.hpp"
+#include "perinom/models/local_model.hpp"
+#include "perinom/models/model_history.hpp"
 #include "perinom/neighbors/local_part.hpp"
 
 namespace perinom {
@@ -20,7 +22,7 @@ class DistributedModel : public TangentModel, public ModelHistory {
  public:
   /// `local` is the model of `part`'s particles (owned first, then the ghosts), built on
   /// subcloud(cloud, part.particles); its rows are limited here. Both must outlive this.
-  DistributedModel(CorrespondenceModel& local, const LocalPart& part);
+  DistributedModel(LocalModel& local, const LocalPart& part);
 
   std::size_t particles() const override { return part_.owned; }
   int dofs_per_particle() const override { return local_.dofs_per_particle(); }
@@ -64,7 +66,8 @@ class DistributedModel : public TangentModel, public ModelHistory {
   void commit_trial() override;
 
  private:
-  CorrespondenceModel& local_;
+  LocalModel& local_;
+  ModelHistory& local_history() const;  ///< the local model's (std::logic_error when it has none)
   const LocalPart& part_;
   std::vector<ParticleId> owned_rows() const;  ///< 0 .. owned - 1
   mutable std::vector<double> u_local_;  // the halo's array: it must not move

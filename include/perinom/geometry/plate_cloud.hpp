@@ -42,4 +42,10 @@ struct PlateCloud {
 /// cells or the lattice exceeds the particle limit.
 PlateCloud make_plate_cloud(const BoxGeometry& box, double dx, const PlateEdges& edges, int layers);
 
+/// The listed physical nodes of `whole` (distinct) as a plate of their own, in that order,
+/// then the ghosts of `whole` that mirror one of them (in whole's order, their images
+/// renumbered): a distributed rank's local plate. Its `nodes` are zero (edge_nodes is the
+/// whole plate's alone).
+PlateCloud sub_plate(const PlateCloud& whole, const std::vector<ParticleId>& nodes);
+
 }  // namespace perinom

@@ -25,7 +25,7 @@
 #include "perinom/materials/linear_elastic.hpp"
 #include "perinom/models/follower_pressure.hpp"
 #include "perinom/models/model_history.hpp"
-#include "perinom/models/tangent_model.hpp"
+#include "perinom/models/local_model.hpp"
 #include "perinom/models/finite_rotation.hpp"
 #include "perinom/models/plastic_points.hpp"
 #include "perinom/models/pointwise_law.hpp"
@@ -93,7 +93,7 @@ struct BondBreaks {
   double released = 0.0;              ///< break_bonds at a state u: the strain energy released there (J)
 };
 
-class CorrespondenceModel : public TangentModel, public ModelHistory {
+class CorrespondenceModel : public LocalModel, public ModelHistory {
  public:
   /// Assembles G (and S when C_hg > 0) once. Throws InputError for a singular shape tensor
   /// (or second-order fit), or a stabilization storage the operator order cannot use.
@@ -121,7 +121,7 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// they are after break_bonds: a fracture run's stable time step follows its breaks by them,
   /// a distributed rank's by its owned rows. The classical and consistent formulations (no
   /// strong rows) only; throws std::logic_error else.
-  std::vector<double> stiffness_row_sums(const std::vector<ParticleId>& rows) const;
+  std::vector<double> stiffness_row_sums(const std::vector<ParticleId>& rows) const override;
   std::vector<std::pair<std::string, std::size_t>> memory() const override;
   void follow_loads(const Loading& loading, double s) override;
 
@@ -132,14 +132,14 @@ class CorrespondenceModel : public TangentModel, public ModelHistory {
   /// The same for the listed rows only (sorted, distinct; their columns sorted), at the
   /// last prepare_tangent: a distributed rank's own rows. The classical and consistent
   /// formulations without follower loads only (throws std::logic_error else).
-  void visit_tangent_rows(const std::vector<ParticleId>& rows, const TangentRowVisitor& visit) const;
+  void visit_tangent_rows(const std::vector<ParticleId>& rows, const TangentRowVisitor& visit) const override;
 
   /// A distributed rank's local model (neighbors/local_part.hpp): internal_force evaluates
   /// grad u and the law on the first `evaluated` particles (owned and near ghosts) and writes
   /// the force of the first `written` (owned), zero on the others, and energy() sums the
   /// written particles' share; only those rows are then meaningful. The classical formulation only (the others' rows read the whole body):
   /// throws std::logic_error else.
-  void limit_rows(std::size_t evaluated, std::size_t written);
+  void limit_rows(std::size_t evaluated, std::size_t written) override;
 
   /// grad u at every particle (N x d x d), and the 3 x 3 Cauchy stress (N x 9): the law's
   /// at u from its committed states (PointwiseLaw::cauchy), nothing kept.

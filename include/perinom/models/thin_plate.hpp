@@ -1,11 +1,12 @@
 #pragma once
 /// @file The nonlocal Kirchhoff thin plate (THEORY sec. 7; seed 002 sec. 3.2, 6.2).
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <utility>
 
 #include "perinom/geometry/plate_cloud.hpp"
-#include "perinom/models/tangent_model.hpp"
+#include "perinom/models/local_model.hpp"
 #include "perinom/neighbors/families.hpp"
 #include "perinom/operators/influence.hpp"
 #include "perinom/operators/nonlocal_operator.hpp"
@@ -23,6 +24,10 @@ struct ThinPlateOptions {
   /// How each edge is held (0 xmin, 1 xmax, 2 ymin, 3 ymax), as the PlateCloud's ghosts were
   /// made; for the plan only (the ghosts and the Loading carry the conditions).
   PlateEdges edges{EdgeSupport::free, EdgeSupport::free, EdgeSupport::free, EdgeSupport::free};
+  /// A distributed rank's local plate (plate_part): the physical nodes from this one on (its
+  /// far ghosts, whose families the part truncates) are not fitted and carry no energy; they
+  /// and the mirror ghosts only lend their values. Every node by default.
+  std::size_t fitted_rows = SIZE_MAX;
 };
 
 /// Deflection w (m), one unknown per physical node of a PlateCloud. With kappa_i = (Hess w)_i
@@ -34,7 +39,11 @@ struct ThinPlateOptions {
 /// onto their images (f_image += sign f_ghost), so W is minimised over the physical nodes
 /// alone and the stiffness stays symmetric. Loads (pressure q: q A_i) and the edge
 /// conditions w = 0 come from a Loading. Lumped mass rho t A_i.
-class ThinPlateModel : public TangentModel {
+/// Over MPI ranks (issue 19) each rank holds the plate of its local part (sub_plate: its
+/// nodes, then the ghosts mirroring them): a centre whose Hessian reaches an owned node or
+/// one of its mirrors lies within one horizon of that node (a mirror is no nearer to a centre
+/// than its image), so the owned and near nodes' fits give the owned force exactly.
+class ThinPlateModel : public LocalModel {
  public:
   /// Assembles the second-order operator (gradient and Hessian) on plate.cloud and the
   /// stabilization. Throws InputError naming a particle whose fit is singular.
@@ -53,6 +62,13 @@ class ThinPlateModel : public TangentModel {
   /// Visits every row of the stiffness K = dF/dw over the physical nodes (ghosts folded),
   /// visit(row, cols, values) with cols sorted; called concurrently for distinct rows.
   void visit_tangent_rows(const TangentRowVisitor& visit) const override;
+  /// The listed physical nodes' rows (sorted, distinct), and their stiffness row sums.
+  void visit_tangent_rows(const std::vector<ParticleId>& rows, const TangentRowVisitor& visit) const override;
+  std::vector<double> stiffness_row_sums(const std::vector<ParticleId>& rows) const override;
+  /// A rank's local plate: Hessians and moments at the first `evaluated` nodes (at most
+  /// ThinPlateOptions::fitted_rows); energy() is then the first `written` nodes' share,
+  /// 1/2 w . f over them (W is quadratic in w).
+  void limit_rows(std::size_t evaluated, std::size_t written) override;
   /// The plate is linear: K does not depend on w, so there is nothing to prepare.
   void prepare_tangent(const double*) override {}
 
@@ -78,6 +94,7 @@ class ThinPlateModel : public TangentModel {
   void extend(const double* w, std::vector<double>& ext) const;
   void derivatives(const double* w);  // ext_, grad_, hess_ at w
   void moment(const double* kappa, double* M) const;
+  RowFill row_fill() const;  // the stiffness rows, ghosts folded
   PlateCloud plate_;
   ThinPlateOptions opt_;
   double D0_;
@@ -86,6 +103,7 @@ class ThinPlateModel : public TangentModel {
   std::vector<Offset> ghost_off_;         // per physical node: its ghosts (CSR)
   std::vector<ParticleId> ghost_list_;
   std::vector<double> ext_, grad_, hess_, Q_, fe_;  // workspaces over all nodes
+  std::size_t evaluated_ = SIZE_MAX, written_ = SIZE_MAX;  // limit_rows
 };
 
 }  // namespace perinom
