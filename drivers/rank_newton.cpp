@@ -10,8 +10,8 @@ namespace perinom::cli {
 
 NewtonOptions rank_newton_options(const SolverSpec& solver, const RankRun& run) {
   NewtonOptions o = newton_options(solver);
-  if (o.linear_solver == "gamg") {
-    const int d = run.local.cloud.dim;
+  const int d = run.local.cloud.dim;
+  if (o.linear_solver == "gamg" && run.model.dofs_per_particle() == d) {  // a solid (a plate's w: constants)
     o.dimension = d;
     o.positions.assign(run.local.cloud.x.begin(), run.local.cloud.x.begin() + std::ptrdiff_t(run.part.owned * d));
   }

@@ -13,7 +13,9 @@
 // solved over the ranks: Loading::ranks), `constraints: rigid_body` (pinned on the whole
 // cloud), tractions and pressures, adr, verlet, newton (constraints on their particles
 // only), or a load path by adr or lbc. Every rank
-// builds the whole cloud and loading (O(N) memory per rank) to choose its part.
+// builds the whole cloud and loading (O(N) memory per rank) to choose its part. Thin plates
+// (radius families): each rank's plate is its part's nodes and their mirror ghosts
+// (plate_part.hpp), fitted at its owned and near nodes.
 #include <omp.h>
 
 #include <algorithm>
@@ -30,9 +32,11 @@
 #include "perinom/core/timer.hpp"
 #include "perinom/distributed/loading_share.hpp"
 #include "perinom/distributed/correction_share.hpp"
+#include "perinom/distributed/local_loading.hpp"
 #include "perinom/neighbors/partition.hpp"
 #include "perinom/neighbors/search.hpp"
 #include "perinom/scene/rank_loading.hpp"
+#include "perinom/scene/plate_part.hpp"
 #include "perinom/scene/registry.hpp"
 #include "perinom/solvers/adr.hpp"
 #include "perinom/solvers/newton.hpp"
@@ -62,17 +66,21 @@ void require_distributed(const Scene& s, const Options& opt) {
                      " is not distributed yet (mpirun -np R perinom run distributes correspondence scenes of the "
                      "classical or consistent formulation on a box or a body from files, elastic or drucker_prager at "
                      "small strain or finite rotation, solved by adr, verlet or newton (mumps or gamg), or in load steps and stages by adr "
-                     "or lbc, with constraints on their particles or at the face or rigid_body, tractions and pressures); run it without mpirun");
+                     "or lbc, with constraints on their particles or at the face or rigid_body, tractions and pressures; and "
+                     "thin plates with radius families); run it without mpirun");
   };
   if (!opt.restart.empty()) refuse("--restart", "a restart");
-  if (s.model.type != "correspondence") refuse("model.type", s.model.type);
+  if (s.model.type != "correspondence" && s.model.type != "thin_plate") refuse("model.type", s.model.type);
+  // A thin plate's k nearest would be searched among its mirror ghosts on the whole plate.
+  if (s.model.type == "thin_plate" && s.discretization.horizon_neighbors > 0)
+    refuse("discretization.horizon", "a thin_plate with k-nearest families");
   // Finite rotation is pointwise (the law's polar decomposition); a follower pressure is not
   // (its force and tangent act on the ranks' facets otherwise than serially: the biaxial
   // example's reactions differed by 0.2%).
   if (s.model.kinematics == "finite_rotation" && s.model.follower_pressure && has_pressure(s))
     refuse("model.follower_pressure", "a follower pressure (finite_rotation turns pressures with the surface; "
            "follower_pressure: false keeps them in the reference configuration)");
-  if (s.model.formulation != "classical" && s.model.formulation != "consistent")
+  if (s.model.type == "correspondence" && s.model.formulation != "classical" && s.model.formulation != "consistent")
     refuse("model.formulation", "the " + s.model.formulation + " formulation (its strong rows read the whole body)");
   if (s.solver.type != "adr" && s.solver.type != "verlet" && s.solver.type != "newton" &&
       !(s.solver.type == "lbc" && s.load_path()))
@@ -115,7 +123,10 @@ int run_distributed(const Options& opt) {
 
   // The whole cloud's frame, this rank's part, and the local problem over it.
   timer.start("discretization");
-  const Problem frame = build_problem_frame(scene);
+  const bool thin_plate = scene.model.type == "thin_plate";
+  std::optional<PlateFrame> plate;  // a thin plate's whole plate (its physical nodes are the frame's cloud)
+  if (thin_plate) plate.emplace(plate_frame(scene));
+  const Problem frame = thin_plate ? std::move(plate->problem) : build_problem_frame(scene);  // plate->problem is spent
   const int d = frame.cloud.dim;
   // k-nearest families are searched on the whole cloud (the part's own search could break
   // the ties at the k-th distance otherwise), and the part reaches their largest support.
@@ -128,7 +139,11 @@ int run_distributed(const Options& opt) {
   local.scene = scene;
   local.cloud = subcloud(frame.cloud, part.particles);
   local.probes = frame.probes;  // their specs (the readout asks whether one reconstructs)
-  const Families families = nearest ? local_families(whole, part) : scene_families(scene, local.cloud);
+  std::optional<PlateCloud> local_plate;  // a thin plate's part: its nodes, then their mirrors
+  if (thin_plate) local_plate.emplace(sub_plate(plate->plate, part.particles));
+  const Families families = thin_plate ? plate_families(scene, *plate, *local_plate, part.owned + part.near)
+                            : nearest  ? local_families(whole, part)
+                                       : scene_families(scene, local.cloud);
   whole = Families{};
   const RankMemory estimate = require_rank_memory(scene, double(families.bonds()), double(families.particles()), opt.max_memory);
   timer.start("operators");
@@ -136,23 +151,28 @@ int run_distributed(const Options& opt) {
   // are evaluated), and the correction solved over the ranks.
   const bool consistent = scene.model.formulation == "consistent";
   const CorrectionShare share = correction_share(part);
-  CorrespondenceOptions copt = correspondence_options(scene);
-  copt.ranks = &share;
-  copt.fitted_rows = part.owned + part.near;  // the far ghosts' truncated families only lend values
   const LocalFacets facets = local_facets(frame.facets, frame.groups, part, part.owned + part.near);
-  auto model = std::make_unique<CorrespondenceModel>(local.cloud, families, scene.material, copt, Surface{},
-                                                     consistent ? facets.facets : BoundaryFacets{});
-  CorrespondenceModel& local_model = *model;
-  local.model = std::move(model);
-  DistributedModel distributed(local_model, part);
+  if (thin_plate) {
+    local.model = plate_part_model(scene, *plate, part, std::move(*local_plate), families);
+  } else {
+    CorrespondenceOptions copt = correspondence_options(scene);
+    copt.ranks = &share;
+    copt.fitted_rows = part.owned + part.near;  // the far ghosts' truncated families only lend values
+    local.model = std::make_unique<CorrespondenceModel>(local.cloud, families, scene.material, copt, Surface{},
+                                                        consistent ? facets.facets : BoundaryFacets{});
+  }
+  DistributedModel distributed(dynamic_cast<LocalModel&>(*local.model), part);
   const LoadingShare loading_share(part, d);
-  const Loading loading =
-      rank_loading(scene, scene.boundary, frame.loading, frame, part, local.cloud, local_model, facets, loading_share);
+  // A thin plate's loading holds its nodes (w = 0) and presses them: the owned ones' share.
+  auto loading_of = [&](const std::vector<BoundarySpec>& boundary, const Loading& whole_loading) {
+    return thin_plate ? local_loading(whole_loading, part, 1)  // w alone
+                      : rank_loading(scene, boundary, whole_loading, frame, part, local.cloud, local.as<CorrespondenceModel>(),
+                                     facets, loading_share);
+  };
+  const Loading loading = loading_of(scene.boundary, frame.loading);
   std::vector<LoadStage> stages;  // a load path's, each stage's items coupled as `loading`'s
   for (std::size_t k = 0; k < frame.stages.size(); ++k)
-    stages.push_back({frame.stages[k].name, frame.stages[k].steps,
-                      rank_loading(scene, stage_boundary(scene, k), frame.stages[k].loading, frame, part, local.cloud,
-                                   local_model, facets, loading_share)});
+    stages.push_back({frame.stages[k].name, frame.stages[k].steps, loading_of(stage_boundary(scene, k), frame.stages[k].loading)});
   const io::Json pins = pin_results(frame);  // printed by rank 0 only (the others' stdout is silenced)
   std::size_t owned_bonds = 0;
   for (std::size_t p = 0; p < part.owned; ++p) owned_bonds += std::size_t(families.end(p) - families.begin(p));
