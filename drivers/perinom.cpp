@@ -34,6 +34,14 @@ void usage() {
                "  perinom material-point [--test 1..7] [--substeps S] [--out DIR]\n");
 }
 
+/// An error's exit code. Under mpirun the error may be some ranks' alone (a singular fit in
+/// one rank's part): every rank is ended with it (abort_ranks), never left waiting.
+int failed(int code) {
+  std::fflush(nullptr);
+  perinom::abort_ranks(code);
+  return code;
+}
+
 /// Ends PETSc (and MPI) however main returns, if a solve started it.
 struct PetscEnd {
   ~PetscEnd() { perinom::finalize_petsc(); }
@@ -131,12 +139,12 @@ int main(int argc, char** argv) {
     throw InputError("unknown command '" + opt.command + "'");
   } catch (const InputError& e) {
     std::fprintf(stderr, "perinom: error: %s\n", e.what());
-    return 2;
+    return failed(2);
   } catch (const SolveError& e) {
     std::fprintf(stderr, "perinom: solve failed: %s\n", e.what());
-    return 3;
+    return failed(3);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "perinom: internal error: %s\n", e.what());
-    return 4;
+    return failed(4);
   }
 }

@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include "../solvers/petsc_plugin.hpp"
+#include "perinom/solvers/petsc.hpp"
 
 namespace perinom {
 namespace {
@@ -74,6 +75,10 @@ std::vector<double> gather_on_root(const std::vector<double>& mine) {
 
 void barrier() {
   if (const detail::PetscPlugin* p = distributed()) p->barrier();
+}
+
+void abort_ranks(int code) {
+  if (mpirun_processes() > 1 && petsc_available()) detail::petsc_plugin("abort_ranks").abort_ranks(code);
 }
 
 }  // namespace perinom

@@ -40,12 +40,8 @@ PetscErrorCode residual_callback(SNES snes, Vec x, Vec r, void* ctx) {
   VecRestoreArrayRead(x, &xa);
   if (sys->error) return PETSC_ERR_USER;
   if (sys->E.p) {
-    // The multiplier form: R += [E^T lambda; E u] (every rank has E).
-    Vec Ex = nullptr;
-    e = VecDuplicate(r, &Ex);
-    if (!e) e = MatMult(sys->E.p, x, Ex);
-    if (!e) e = VecAXPY(r, 1.0, Ex);
-    VecDestroy(&Ex);
+    // The multiplier form: R += [E^T lambda; E u] (every rank has E), in place.
+    e = MatMultAdd(sys->E.p, x, r, r);
     if (e) return e;
   }
   MPI_Allreduce(MPI_IN_PLACE, &finite, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);  // every rank takes one branch
@@ -365,6 +361,7 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
 extern "C" const perinom::detail::PetscPlugin* perinom_petsc_plugin() {
   using namespace perinom::detail;
   static const PetscPlugin plugin{solve,        end_petsc,          world,  halo_create, halo_update, halo_add_to_owners,
-                                  halo_destroy, reduce,             gather, barrier,     partition_graph};
+                                  halo_destroy, reduce,             gather, barrier,     abort_ranks,
+                                  partition_graph};
   return &plugin;
 }

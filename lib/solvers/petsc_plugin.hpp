@@ -30,6 +30,7 @@ struct PetscPlugin {
   void (*reduce)(double* values, int count, bool max);
   void (*gather)(const double* owned, std::size_t count, double* root);
   void (*barrier)();
+  void (*abort_ranks)(int code);
   /// PT-Scotch on a symmetric graph (petsc_partition.hpp).
   void (*partition_graph)(std::size_t n, const std::int64_t* offsets, const std::int32_t* cols, int parts,
                           int* rank_of);

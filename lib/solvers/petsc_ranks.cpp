@@ -73,4 +73,10 @@ void gather(const double* owned, std::size_t count, double* root) {
 
 void barrier() { MPI_Barrier(PETSC_COMM_WORLD); }
 
+void abort_ranks(int code) {
+  PetscBool started = PETSC_FALSE;
+  PetscInitialized(&started);
+  if (started) MPI_Abort(PETSC_COMM_WORLD, code);
+}
+
 }  // namespace perinom::detail

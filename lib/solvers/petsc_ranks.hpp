@@ -22,5 +22,7 @@ void reduce(double* values, int count, bool max);
 /// Each rank's `count` values, in rank order, into `root` on rank 0 (unused elsewhere).
 void gather(const double* owned, std::size_t count, double* root);
 void barrier();
+/// Ends every rank with exit code `code` (MPI_Abort) once PETSc runs; nothing before.
+void abort_ranks(int code);
 
 }  // namespace perinom::detail

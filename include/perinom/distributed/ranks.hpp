@@ -46,5 +46,9 @@ void max_over_ranks(double* values, int count);
 std::vector<double> gather_on_root(const std::vector<double>& mine);
 /// Every rank waits for the others.
 void barrier();
+/// Under mpirun, once the ranks run: ends every rank with exit code `code` (MPI_Abort), so
+/// that an error on some ranks never leaves the others waiting in an exchange. Returns
+/// without mpirun or before the ranks start (every rank then fails alike).
+void abort_ranks(int code);
 
 }  // namespace perinom

@@ -23,7 +23,10 @@ struct NewtonOptions {
   /// (direct.hpp): "mumps" (MUMPS's multifrontal LU) or "gamg" (PETSc's algebraic multigrid
   /// preconditioning conjugate gradients, GMRES for a model with history). The PETSc ones
   /// need the Galerkin form of any face-located constraint (not the improved or strong
-  /// formulation) and a build with PETSc.
+  /// formulation) and a build with PETSc. On a model spread over MPI ranks
+  /// (DistributedModel) they solve over the ranks (face-located constraints there in the
+  /// multiplier form, "mumps" only); "klu" factors on one process (mpirun's driver takes
+  /// "mumps" for it).
   std::string linear_solver = "klu";
   /// gamg: the particles' positions (point-major, dimension values each) of a solid, whose
   /// rigid-body modes then form the near-null space; empty: PETSc's default (constants).
