@@ -98,13 +98,17 @@ MemoryEstimate estimate_memory(const Scene& s) {
   const double per_bond = rates.per_bond, per_particle = rates.per_particle;
   e.baseline = peak_resident_bytes();
   e.bytes = e.baseline + per_bond * e.bonds + per_particle * e.particles;
-  if (solver_of(s).jacobian || s.solver.check == "newton") {
-    // The Jacobian couples particles up to two horizons apart: d^2 entries of 16 bytes (a
-    // value and a 64-bit column) per pair, and KLU's factors, counted as three times that.
-    const double reach = std::min(std::pow(2.0, d) * e.bonds / std::max(e.particles, 1.0), e.particles);
-    e.bytes += 4.0 * e.particles * reach * d * d * 16.0;
-  }
+  e.bytes += jacobian_bytes(s, e.particles, e.bonds);
   return e;
+}
+
+double jacobian_bytes(const Scene& s, double particles, double bonds) {
+  if (!solver_of(s).jacobian && s.solver.check != "newton") return 0.0;
+  // The Jacobian couples particles up to two horizons apart: d^2 entries of 16 bytes (a
+  // value and a 64-bit column) per pair, and the factors, counted as three times that.
+  const int d = s.dim;
+  const double reach = std::min(std::pow(2.0, d) * bonds / std::max(particles, 1.0), particles);
+  return 4.0 * particles * reach * d * d * 16.0;
 }
 
 double available_memory() {

@@ -26,6 +26,11 @@ struct MemoryEstimate {
 
 MemoryEstimate estimate_memory(const Scene& scene);
 
+/// The Newton Jacobian's share of the peak for `particles` and `bonds` (a whole scene's, or a
+/// rank's local ones), with its factors; 0 when the scene solves no Newton (solver.type,
+/// solver.check).
+double jacobian_bytes(const Scene& scene, double particles, double bonds);
+
 /// The memory a run may take: MemAvailable of /proc/meminfo, bounded by the address-space
 /// limit (ulimit -v) less what the process has mapped. 0 when unknown.
 double available_memory();
