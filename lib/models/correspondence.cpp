@@ -197,6 +197,7 @@ void CorrespondenceModel::internal_force(const double* u, double* f) {
   }
   if (S_) S_->add_rest(u, H_.data(), f);
   if (follower_ && follower_->active()) follower_->add_force(H_.data(), f);
+  if (cohesive_) cohesive_->add_force(u, f);
   if (G_.transpose_rows() < particles())
     std::fill(f + G_.transpose_rows() * dim_, f + particles() * dim_, 0.0);
 }
@@ -217,6 +218,7 @@ double CorrespondenceModel::energy(const double* u) {
     S_->apply(u, H_.data(), Su_.data());  // W_s = 1/2 u . S u
     for (std::size_t k = 0; k < n * dim_; ++k) w += 0.5 * u[k] * Su_[k];
   }
+  if (cohesive_) w += cohesive_->energy(u);
   return w;
 }
 
@@ -237,7 +239,18 @@ void CorrespondenceModel::visit_rows(
   for_each_tangent_row(G_, C, S_.get(), visit, strong_rows ? &strong : nullptr, local);
 }
 
+void CorrespondenceModel::check_tangent_rows() const {
+  if (cohesive_ && cohesive_->size() > 0)
+    throw std::logic_error("visit_tangent_rows: the tangent of softening bonds is not built");
+}
+
+void CorrespondenceModel::soften_broken_bonds(const CohesiveLaw& law) {
+  if (G_.transpose_rows() < particles()) throw std::logic_error("soften_broken_bonds: not on a limited model");
+  cohesive_ = std::make_unique<CohesiveBonds>(dim_, x_, volume_, *graph_, law);
+}
+
 void CorrespondenceModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
+  check_tangent_rows();
   // The follower rows as the last prepare_tangent left them; none before the first (the
   // symbolic pattern needs none: they only touch columns G's row already has).
   const std::size_t d3 = static_cast<std::size_t>(dim_) * dim_ * dim_;
@@ -249,6 +262,7 @@ void CorrespondenceModel::visit_tangent_rows(const TangentRowVisitor& visit) con
 void CorrespondenceModel::visit_tangent_rows(const std::vector<ParticleId>& rows, const TangentRowVisitor& visit) const {
   if (formulation_ != Formulation::classical && formulation_ != Formulation::consistent)
     throw std::logic_error("visit_tangent_rows(rows): for the classical and consistent formulations");
+  check_tangent_rows();
   if (follower_ && follower_->active()) throw std::logic_error("visit_tangent_rows(rows): not with follower loads");
   for_each_tangent_row(rows, G_, PointwiseTangent{C_.data(), C_stride_, volume_.data()}, S_.get(), visit, true);
 }
@@ -298,6 +312,7 @@ std::vector<double> CorrespondenceModel::stiffness_row_sums() const {
              [&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
                add_row_sums(d, i, cols, blocks, sums.data());
              });
+  if (cohesive_) cohesive_->add_row_sums(nullptr, sums.data());
   return sums;
 }
 
@@ -316,6 +331,7 @@ std::vector<double> CorrespondenceModel::stiffness_row_sums(const std::vector<Pa
                          const auto at = std::lower_bound(rows.begin(), rows.end(), static_cast<ParticleId>(i));
                          add_row_sums(d, static_cast<std::size_t>(at - rows.begin()), cols, blocks, sums.data());
                        });
+  if (cohesive_) cohesive_->add_row_sums(&rows, sums.data());
   return sums;
 }
 
@@ -326,6 +342,7 @@ std::vector<std::pair<std::string, std::size_t>> CorrespondenceModel::memory() c
   if (!trace_.empty()) m.emplace_back("boundary facets and their trace", trace_.memory_bytes());
   if (S_) m.emplace_back(S_->name(), S_->memory_bytes());
   m.emplace_back("workspaces (grad u, V.P, P, S u)", (H_.size() + Q_.size() + P_.size() + Su_.size()) * sizeof(double));
+  if (cohesive_) m.emplace_back("softening bonds", cohesive_->memory_bytes());
   if (law_->has_history())
     m.emplace_back("material states (committed and trial) and tangents", law_->memory_bytes() + C_.size() * sizeof(double));
   if (formulation_ == Formulation::improved || formulation_ == Formulation::strong)

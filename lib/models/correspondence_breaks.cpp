@@ -26,13 +26,19 @@ BondBreaks CorrespondenceModel::break_bonds(const std::vector<std::pair<Particle
   check_breakable(bonds);
   BondBreaks out;
   out.rows = graph_->rows_touched(bonds);
+  std::vector<std::pair<ParticleId, ParticleId>> died;  // they soften (soften_broken_bonds)
   auto change = [&] {
     graph_->begin_event();
-    for (const auto& [i, j] : bonds) out.broken += graph_->break_bond(i, j) ? 1 : 0;
+    for (const auto& [i, j] : bonds)
+      if (graph_->break_bond(i, j)) {
+        ++out.broken;
+        if (cohesive_) died.emplace_back(i, j);
+      }
     G_.refresh_rows(out.rows);
   };
   if (S_) S_->refresh_rows(out.rows, change);
   else change();
+  if (cohesive_) cohesive_->add(died);
   out.detached = G_.detached();
   return out;
 }
@@ -66,6 +72,7 @@ double CorrespondenceModel::row_share(std::size_t i, const double* u, double sig
 }
 
 BondBreaks CorrespondenceModel::cut_bonds(const std::vector<std::pair<ParticleId, ParticleId>>& bonds) {
+  if (cohesive_) throw std::logic_error("cut_bonds: the body is cut before its broken bonds soften");
   BondBreaks out = break_bonds(bonds);
   graph_->settle_events();
   return out;
@@ -85,8 +92,10 @@ BondBreaks CorrespondenceModel::break_bonds(const std::vector<std::pair<Particle
   check_breakable(bonds);  // before f changes
   double before = 0.0, after = 0.0;
   for (const ParticleId i : graph_->rows_touched(bonds)) before += row_share(i, u, -1.0, f);
+  const std::size_t softening = cohesive_ ? cohesive_->size() : 0;
   BondBreaks out = break_bonds(bonds);  // refreshes the same rows
   for (const ParticleId i : out.rows) after += row_share(i, u, 1.0, f);
+  if (cohesive_) after += cohesive_->add_force(u, f, softening);  // the bonds that now soften
   out.released = before - after;
   return out;
 }

@@ -23,6 +23,7 @@
 #include "perinom/geometry/point_cloud.hpp"
 #include "perinom/geometry/surface.hpp"
 #include "perinom/materials/linear_elastic.hpp"
+#include "perinom/models/cohesive_bonds.hpp"
 #include "perinom/models/follower_pressure.hpp"
 #include "perinom/models/model_history.hpp"
 #include "perinom/models/local_model.hpp"
@@ -188,6 +189,16 @@ class CorrespondenceModel : public LocalModel, public ModelHistory {
   /// the run's).
   BondBreaks cut_bonds(const std::vector<std::pair<ParticleId, ParticleId>>& bonds);
 
+  /// From now on the bonds break_bonds breaks soften (cohesive_bonds.hpp) instead of
+  /// vanishing: their pair forces join the force, the energy and the stiffness bound. The
+  /// family sums are the live graph's now (after precracks, which cut_bonds refuses after
+  /// this call). Newton's tangent rows are not built for them: visit_tangent_rows throws
+  /// std::logic_error once a bond softens. A whole model only (not after limit_rows).
+  void soften_broken_bonds(const CohesiveLaw& law);
+  /// The softening bonds, or nullptr.
+  CohesiveBonds* cohesive() { return cohesive_.get(); }
+  const CohesiveBonds* cohesive() const { return cohesive_.get(); }
+
   const NonlocalOperator& G() const { return G_; }
   /// 1 or 2: the order of the fit G comes from (CorrespondenceOptions::operator_order).
   int operator_order() const { return order_; }
@@ -252,6 +263,9 @@ class CorrespondenceModel : public LocalModel, public ModelHistory {
   ConsistencyReport consistency_;
   std::optional<FollowerPressure> follower_;
   std::vector<double> follower_tangent_;  // its local rows at the last prepare_tangent
+  std::unique_ptr<CohesiveBonds> cohesive_;  // soften_broken_bonds
+  /// visit_tangent_rows' refusal once a bond softens.
+  void check_tangent_rows() const;
   /// Replaces G by G~ (consistent_gradient.hpp) after keeping the trace of the facets.
   void make_consistent(const PointCloud& cloud, const Families& families, const BondWeights& weights,
                        BoundaryFacets& facets, WeightPrecision precision, const CorrectionShare* ranks);
