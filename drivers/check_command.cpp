@@ -106,7 +106,10 @@ int check(const Options& opt) {
                 p.stages[k].loading.force.empty() ? "" : ", external forces");
   if (const auto& d = p.scene.damage) {
     if (d->criterion == "instability") std::printf("  damage          instability, s_max = %g\n", d->s_max);
-    if (d->criterion == "stress") std::printf("  damage          stress, f_t = %g Pa\n", d->f_t);
+    if (d->criterion == "stress" && d->fracture_energy > 0.0)
+      std::printf("  damage          stress, f_t = %g Pa; broken bonds soften, G_f = %g J/m^2\n", d->f_t, d->fracture_energy);
+    else if (d->criterion == "stress")
+      std::printf("  damage          stress, f_t = %g Pa\n", d->f_t);
     if (d->criterion == "stretch" && d->G_c <= 0.0) std::printf("  damage          stretch, s_c = %g\n", d->s_c);
     if (d->criterion == "stretch" && d->G_c > 0.0)
       std::printf("  damage          stretch, s_c = %.4g from G_c = %g J/m^2 (bond-based calibration by the bulk "

@@ -223,10 +223,12 @@ int run(const Options& opt) {
     f["breaking_steps"] = static_cast<long long>(c.changing_steps);
     f["bonds_broken"] = static_cast<long long>(c.broken);
     f["detached_particles"] = static_cast<long long>(c.detached);
+    if (c.spent >= 0) f["softening_bonds_spent"] = static_cast<long long>(c.spent), f["opening_limit"] = c.opening_limit;
     if (c.detached > 0)
       std::printf("perinom: note: %lld particle(s) lost a family that spans the %s and were detached: they carry no "
-                  "stress and move freely (summary.json solver.fracture.detached_particles)\n",
-                  static_cast<long long>(c.detached), scene.dim == 2 ? "plane" : "space");
+                  "stress and %s (summary.json solver.fracture.detached_particles)\n",
+                  static_cast<long long>(c.detached), scene.dim == 2 ? "plane" : "space",
+                  c.spent >= 0 ? "only their softening bonds hold them" : "move freely");
     if (dynamic) f["time_step_reductions"] = static_cast<long long>(c.step_reductions), f["final_time_step"] = c.final_dt;
     if (c.step_reductions > 0)
       std::printf("perinom: note: broken bonds lowered the stable time step %lld time(s); the run kept its ratio to "

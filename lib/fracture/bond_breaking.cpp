@@ -87,6 +87,7 @@ void BondBreaking::hold(const std::vector<ParticleId>& particles) {
 }
 
 std::size_t BondBreaking::find(const double* u, const double* H) {
+  if (CohesiveBonds* softening = model_->cohesive()) softening->commit(u);  // the balanced state's openings
   using detail::live_bonds_where;
   using detail::live_maximum;
   const BondGraph& g = model_->G().graph();

@@ -12,6 +12,7 @@
 #include "perinom/geometry/boundary_facets.hpp"
 #include "perinom/geometry/mesh_body.hpp"
 #include "perinom/geometry/point_file.hpp"
+#include "perinom/models/cohesive_bonds.hpp"
 #include "perinom/neighbors/search.hpp"
 #include "scene_loading.hpp"
 
@@ -99,6 +100,17 @@ void derive_critical_stretch(DamageSpec& d, const Scene& s, const Families& fami
   std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
   d.G_c_delta = r[r.size() / 2];
   d.s_c = critical_stretch(bond_calibration(s.material, s.discretization.weight, d.G_c_delta, s.geometry.thickness), d.G_c);
+}
+
+/// damage.fracture_energy: G_f must leave the longest bond a softening branch.
+void check_fracture_energy(const DamageSpec& d, const Scene& s, const Families& families) {
+  const double longest = *std::max_element(families.support.begin(), families.support.end());
+  const double least = least_fracture_energy(s.dim, {d.f_t, d.fracture_energy, s.material.E}, longest);
+  if (d.fracture_energy > least) return;
+  char text[200];
+  std::snprintf(text, sizeof text, "%g J/m^2 is below %g J/m^2, the elastic rise to f_t of a bond of the horizon's "
+                "length; raise it or use the plain stress criterion", d.fracture_energy, least);
+  throw InputError(s.source + ": damage.fracture_energy: " + text);
 }
 
 }  // namespace
@@ -261,6 +273,7 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   const Families families = scene_families(s, p.cloud);
   p.bonds = families.bonds();
   if (p.scene.damage && p.scene.damage->G_c > 0.0) derive_critical_stretch(*p.scene.damage, s, families);
+  if (p.scene.damage && p.scene.damage->fracture_energy > 0.0) check_fracture_energy(*p.scene.damage, s, families);
   for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
   if (timer) timer->start("operators");
   const CorrespondenceOptions opt = correspondence_options(s);

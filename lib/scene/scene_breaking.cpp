@@ -14,11 +14,16 @@ SceneBreaking::SceneBreaking(Problem& p) : p_(&p) {
   DamageCriterion c = DamageCriterion::instability;
   parse_damage_criterion(d->criterion, c);
   const double parameter = c == DamageCriterion::instability ? d->s_max : c == DamageCriterion::stretch ? d->s_c : d->f_t;
-  breaking_ = std::make_unique<BondBreaking>(p.as<CorrespondenceModel>(), p.cloud, c, parameter);
+  auto& body = p.as<CorrespondenceModel>();
+  if (d->fracture_energy > 0.0) {
+    // After the precracks: the family sums are the body's as cut (G_f checked in problem.cpp).
+    body.soften_broken_bonds({d->f_t, d->fracture_energy, body.material().E});
+  }
+  breaking_ = std::make_unique<BondBreaking>(body, p.cloud, c, parameter);
   for (const Region& zone : d->no_fail) breaking_->hold(select(zone, p.scene.geometry, p.cloud));
   BondBreaking* b = breaking_.get();
   // find runs at the u whose force was just taken (ModelChanges): its grad u is kept.
-  const CorrespondenceModel* model = &p.as<CorrespondenceModel>();
+  const CorrespondenceModel* model = &body;
   changes_ = {[b, model](const double* x) { return b->find(x, model->last_gradient()); },
               [b](const double* x, double* f) {
                 const BondBreaks made = b->apply(x, f);
@@ -29,6 +34,7 @@ SceneBreaking::SceneBreaking(Problem& p) : p_(&p) {
               [b] { return b->state(); },
               [b](const std::vector<double>& s) { b->restore(s); },
               [b]() -> const std::vector<double>& { return b->row_sums(); }};
+  if (d->fracture_energy > 0.0) changes_.save = {}, changes_.restore = {}, changes_.dissipates = true;
 }
 
 void SceneBreaking::report(SolveReport& r, bool verlet) const {
@@ -36,6 +42,8 @@ void SceneBreaking::report(SolveReport& r, bool verlet) const {
   r.changes.detached = static_cast<std::int64_t>(p_->as<CorrespondenceModel>().G().detached().size());
   if (verlet && breaking_->armed_at_find() > 0) r.changes.armed_step = breaking_->armed_at_find() * p_->scene.damage->every;
   r.changes.hourglass_threshold = breaking_->hourglass_threshold();
+  if (const CohesiveBonds* soft = p_->as<CorrespondenceModel>().cohesive())
+    r.changes.spent = static_cast<std::int64_t>(soft->spent()), r.changes.opening_limit = soft->opening_limit();
 }
 
 }  // namespace perinom

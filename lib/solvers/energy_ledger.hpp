@@ -34,7 +34,8 @@ class EnergyLedger {
   }
 
   /// At the step's last balance (nothing more due): u, f as there; `broke` if the step
-  /// broke bonds.
+  /// broke bonds (or the model dissipates without breaks: ModelChanges::dissipates; then
+  /// the first balance's trapezoid is exact only to the step's curvature of the force).
   void commit(Model& model, const std::vector<double>& u, const std::vector<double>& f, bool broke) {
     if (broke) {
       for (std::size_t k = 0; k < u.size(); ++k) work_ += f[k] * (u[k] - u_first_[k]);

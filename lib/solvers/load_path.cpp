@@ -243,7 +243,7 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
           if (std::sqrt(reaction2) > carried) carried = std::sqrt(reaction2), adr->set_load_floor(carried);
           const std::size_t due = changes->find(u.data());
           if (due == 0) {
-            if (ledger) ledger->commit(model, u, fint, r.broken > 0);
+            if (ledger) ledger->commit(model, u, fint, r.broken > 0 || changes->dissipates);
             break;
           }
           // The cap: the state left is the last balance, its breaks made, the due ones not.

@@ -147,3 +147,32 @@ TEST_CASE("a Verlet run whose energy balance ends beyond 1% says so, and one wit
   REQUIRE(k != std::string::npos);
   CHECK(std::stod(summary.substr(k + 18)) < 0.01);
 }
+
+TEST_CASE("damage.fracture_energy is checked by key, and refused where softening bonds are not built", "[cli][fracture]") {
+  const std::string bar = slurp(PERINOM_SOURCE_DIR "/examples/brittle_bar.yaml");
+  const auto soft = [&](const std::string& more) { return with(bar, "  f_t: 1.0e6\n", "  f_t: 1.0e6\n  fracture_energy: 50.0\n" + more); };
+  SECTION("not positive") {
+    require_rejected(with(bar, "  f_t: 1.0e6\n", "  f_t: 1.0e6\n  fracture_energy: 0\n"), {"damage.fracture_energy: must be positive"});
+  }
+  SECTION("below the elastic rise of the longest bond: the law would have no softening branch") {
+    require_rejected(with(bar, "  f_t: 1.0e6\n", "  f_t: 1.0e6\n  fracture_energy: 1.0e-4\n"),
+                     {"damage.fracture_energy: 0.0001 J/m^2 is below"});
+  }
+  SECTION("another criterion") {
+    const std::string s = with(fracture_scene(), "s_max: 0.02}", "s_max: 0.02, fracture_energy: 50.0}");
+    require_rejected(s, {"damage.fracture_energy: softens the bonds the stress criterion breaks (criterion: stress)"});
+  }
+  SECTION("Verlet") {
+    const std::string s = with(fracture_scene(), "criterion: instability, s_max: 0.02",
+                               "criterion: stress, f_t: 1.0e6, fracture_energy: 50.0");
+    require_rejected(s, {"damage.fracture_energy: softening bonds in a Verlet run"});
+  }
+  SECTION("the Newton check") {
+    require_rejected(with(soft(""), "solver: {type: adr,", "solver: {type: adr, check: newton,"),
+                     {"damage.fracture_energy: softening bonds under solver.check: newton (their tangent) are not built"});
+  }
+  SECTION("checkpoints") {
+    require_rejected(with(soft(""), "output: {vtk_every: 0}", "output: {vtk_every: 0, checkpoint_every: 10}"),
+                     {"damage.fracture_energy: softening bonds in checkpoints"});
+  }
+}

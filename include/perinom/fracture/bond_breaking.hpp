@@ -41,7 +41,9 @@ class BondBreaking {
   void hold(const std::vector<ParticleId>& particles);
 
   /// The bonds due at u (N x d), kept for apply(); returns how many (a bond found in both
-  /// directions counts twice here, once in apply()). H: grad u at u when the caller has it
+  /// directions counts twice here, once in apply()). With softening bonds
+  /// (CorrespondenceModel::soften_broken_bonds) it first commits their openings at u: u is a
+  /// state the run keeps (a load path's balance). H: grad u at u when the caller has it
   /// (CorrespondenceModel::last_gradient() right after the force at u), else nullptr and the
   /// instability and stress criteria take it from G.
   std::size_t find(const double* u, const double* H = nullptr);

@@ -108,6 +108,7 @@ struct DamageSpec {
   double G_c = 0.0;        ///< stretch: the fracture energy (J/m^2) s_c is derived from; 0 when s_c is given
   double G_c_delta = 0.0;  ///< the horizon the derivation used (m): the median family radius
   double f_t = 0.0;        ///< stress: the tensile strength (Pa)
+  double fracture_energy = 0.0;  ///< stress: G_f (J/m^2), broken bonds soften (models/cohesive_bonds.hpp); 0: they vanish
   std::int64_t every = 1;  ///< look for bonds to break every this many steps
   std::vector<Region> no_fail;  ///< bonds with an end in one of these never break (box, side or point regions)
 };

@@ -47,6 +47,10 @@ struct SolveReport {
     /// armed, or another criterion) and the s_hg_max it fixed then.
     std::int64_t armed_step = -1;
     double hourglass_threshold = 0.0;
+    /// Softening bonds (damage.fracture_energy; set by whoever breaks bonds): how many carry
+    /// nothing more (opened past eta_u; -1: no softening), and eta_u (m).
+    std::int64_t spent = -1;
+    double opening_limit = 0.0;
   };
   Changes changes;
 };

@@ -44,6 +44,9 @@ struct ModelChanges {
   /// stable_step() has been called (apply() keeps them up to date). A load path raises ADR's
   /// density with them after each change (AdrRelaxation::raise_density).
   std::function<const std::vector<double>&()> row_sums;
+  /// The model dissipates energy between changes too (softening bonds, whose state find()
+  /// commits): a load path's energy account (EnergyLedger) recounts after every step.
+  bool dissipates = false;
 };
 
 }  // namespace perinom
