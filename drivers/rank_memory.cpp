@@ -38,7 +38,7 @@ RankMemory require_rank_memory(const Scene& s, double local_bonds, double local_
   const double distributed_rate = s.model.formulation == "consistent" ? 1.25 : 1.0;
   // Newton over the ranks: the rank's rows of the Jacobian and its share of the factors
   // (without it the estimate was half the peak: a 40,401-node plate by MUMPS on 2 ranks,
-  // 103 MiB estimated, 204 MiB measured).
+  // 103 MiB estimated, 202-204 MiB measured in two runs).
   m.rank_bytes = peak_resident_bytes() + distributed_rate * rates.per_bond * local_bonds + rates.per_particle * local_particles +
                  jacobian_bytes(s, local_particles, local_bonds);
   // Every rank's (host, estimate, available memory), on every rank: each fills its own row.

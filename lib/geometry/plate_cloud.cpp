@@ -81,27 +81,20 @@ PlateCloud make_plate_cloud(const BoxGeometry& box, double dx, const PlateEdges&
 
 PlateCloud sub_plate(const PlateCloud& whole, const std::vector<ParticleId>& nodes) {
   PlateCloud p;
-  PointCloud& c = p.cloud;
-  c.dim = 2;
-  c.dx = whole.cloud.dx;
-  c.spacing = whole.cloud.spacing;
   std::vector<std::int64_t> local(whole.physical, -1);
-  auto add = [&](std::size_t i) {
-    c.x.insert(c.x.end(), whole.cloud.x.begin() + std::ptrdiff_t(2 * i), whole.cloud.x.begin() + std::ptrdiff_t(2 * i + 2));
-    c.volume.push_back(whole.cloud.volume[i]);
-  };
+  std::vector<ParticleId> kept = nodes;  // the nodes, then the mirrors of those among them
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     local.at(nodes[k]) = std::int64_t(k);
-    add(nodes[k]);
     p.area.push_back(whole.area[nodes[k]]);
   }
   p.physical = nodes.size();
   for (std::size_t g = 0; g < whole.image.size(); ++g) {
     if (local[whole.image[g]] < 0) continue;
-    add(whole.physical + g);
+    kept.push_back(static_cast<ParticleId>(whole.physical + g));
     p.image.push_back(static_cast<ParticleId>(local[whole.image[g]]));
     p.sign.push_back(whole.sign[g]);
   }
+  p.cloud = subcloud(whole.cloud, kept);
   return p;
 }
 

@@ -72,10 +72,9 @@ void ThinPlateModel::internal_force(const double* w, double* f) {
 
 double ThinPlateModel::energy(const double* w) {
   if (written_ < plate_.physical) {  // a rank's share: W = 1/2 w . f(w), W being quadratic
-    std::vector<double> f(plate_.physical);
-    internal_force(w, f.data());
+    internal_force(w, share_.data());
     double W = 0.0;
-    for (std::size_t r = 0; r < written_; ++r) W += 0.5 * w[r] * f[r];
+    for (std::size_t r = 0; r < written_; ++r) W += 0.5 * w[r] * share_[r];
     return W;
   }
   derivatives(w);
@@ -156,6 +155,7 @@ void ThinPlateModel::limit_rows(std::size_t evaluated, std::size_t written) {
   if (written > evaluated || evaluated > std::min(plate_.physical, op_.fitted_rows()))
     throw std::logic_error("ThinPlateModel::limit_rows: written > evaluated or evaluated beyond the fitted nodes");
   evaluated_ = evaluated, written_ = written;
+  share_.assign(written < plate_.physical ? plate_.physical : 0, 0.0);
   op_.limit_rows(evaluated, SIZE_MAX);  // every row's transpose: the mirrors' forces fold onto their images
 }
 

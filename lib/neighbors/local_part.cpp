@@ -80,21 +80,6 @@ std::unordered_map<ParticleId, std::size_t> owned_index(const LocalPart& part) {
   return at;
 }
 
-PointCloud subcloud(const PointCloud& cloud, const std::vector<ParticleId>& particles) {
-  PointCloud out;
-  out.dim = cloud.dim;
-  out.dx = cloud.dx;
-  out.spacing = cloud.spacing;
-  const int d = cloud.dim;
-  out.x.reserve(particles.size() * d);
-  out.volume.reserve(particles.size());
-  for (const ParticleId i : particles) {
-    out.x.insert(out.x.end(), cloud.x.begin() + i * d, cloud.x.begin() + (i + 1) * d);
-    out.volume.push_back(cloud.volume[i]);
-  }
-  return out;
-}
-
 Families local_families(const Families& whole, const LocalPart& part) {
   std::vector<std::int64_t> local(whole.particles(), -1);
   for (std::size_t p = 0; p < part.particles.size(); ++p) local[part.particles[p]] = std::int64_t(p);

@@ -3,6 +3,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "perinom/core/types.hpp"
+
 namespace perinom {
 
 /// Particles in d = 2 or 3 dimensions.
@@ -18,5 +20,9 @@ struct PointCloud {
   std::size_t size() const { return volume.size(); }
   const double* point(std::size_t i) const { return x.data() + i * dim; }
 };
+
+/// The listed particles of `cloud` as a cloud of their own, in that order (a rank's local
+/// part, a plate's part with its mirrors).
+PointCloud subcloud(const PointCloud& cloud, const std::vector<ParticleId>& particles);
 
 }  // namespace perinom

@@ -103,6 +103,7 @@ class ThinPlateModel : public LocalModel {
   std::vector<Offset> ghost_off_;         // per physical node: its ghosts (CSR)
   std::vector<ParticleId> ghost_list_;
   std::vector<double> ext_, grad_, hess_, Q_, fe_;  // workspaces over all nodes
+  std::vector<double> share_;  // energy()'s force on a rank (limit_rows): the physical nodes'
   std::size_t evaluated_ = SIZE_MAX, written_ = SIZE_MAX;  // limit_rows
 };
 

@@ -44,9 +44,6 @@ LocalPart local_part(const PointCloud& cloud, const std::vector<ParticleId>& ord
 /// The local index of each owned particle, by its index in the whole cloud.
 std::unordered_map<ParticleId, std::size_t> owned_index(const LocalPart& part);
 
-/// The listed particles of `cloud` as a cloud of their own, in that order.
-PointCloud subcloud(const PointCloud& cloud, const std::vector<ParticleId>& particles);
-
 /// The whole cloud's families restricted to the part, in its local numbering: each local
 /// particle keeps the members that are local (the owned and near ones keep all, when the part
 /// was cut with a horizon at least the largest support) and its support. For families that a
