@@ -183,9 +183,8 @@ def main():
              "formulation, horizon 3.015 dx, C_hg = 0.5, the stress criterion with f_t = 3.9 MPa (seed 000 "
              "eq. 49-51, no fracture-energy regularisation), no-fail grips at the supports and under the load; "
              f"the load point displaced by {TOTAL * 1e3:g} mm in {STEPS} load steps, solved by ADR. "
-             "Their experiments peak at 0.93-1.11 kN. One thread each, measured while other runs shared the two "
-             "cores (the finest run at 1e-6 took twice as long as at 1e-5 partly for that); memory is the peak "
-             "resident set.", "",
+             "Their experiments peak at 0.93-1.11 kN. One thread each, two runs at a time on the two cores (the "
+             "wall times are a busy machine's); memory is the peak resident set.", "",
              "| dx (mm) | particles | ADR tolerance | peak (kN) | at (mm) | load at 0.15 mm (kN) | bonds broken "
              "| ADR iterations | wall (s) | memory (MiB) | peak against the finest | dissipated per crack area (N/m) |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
