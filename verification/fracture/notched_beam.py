@@ -97,9 +97,9 @@ def run(exe, dx, tol, work, reuse, soft=False, ratio=RATIO):
                 dissipated=float(rows[-1]["dissipated_energy"]))
 
 
-def soft_report(soft, plain_moved):
-    """The softening-bond section of the report: its table and what it shows (plain_moved: how
-    far the plain criterion's peak moved over the spacings, %)."""
+def soft_report(soft, plain, plain_moved):
+    """The softening-bond section of the report: its table and what it shows (plain: the plain
+    criterion's runs at the three spacings; plain_moved: how far their peak moved, %)."""
     m3 = [r for r in soft if abs(r["ratio"] - RATIO) < 1e-9]
     same = [r for r in soft if abs(r["ratio"] * r["dx"] - RATIO * SPACINGS[0]) < 1e-9]
     ref = m3[-1]
@@ -125,8 +125,8 @@ def soft_report(soft, plain_moved):
     lines += ["", f"With the horizon at 3.015 dx the peak at dx = 2.5 mm is {moved:.0f}% above the one at 1.25 mm "
               f"(dx^{slope:.2f}; the plain criterion's moved {plain_moved:.0f}%): "
               + ("the three peaks agree within 5%. " if abs(moved) <= 5.0 else
-                 "the softening bonds take most of the spacing out of the peak, but the three peaks do not agree "
-                 "within 5%, which the issue asks. ")
+                 "the relative spread is half the plain criterion's only because the softening bonds add a nearly "
+                 "constant load (below); the three peaks do not agree within 5%, which the issue asks. ")
               + f"With the "
               f"horizon held at 7.54 mm the three spacings' peaks spread by {spread:.1f}%: "
               + ("within 5%, so what moves the peak is the horizon, the model's length, not the spacing. "
@@ -138,10 +138,23 @@ def soft_report(soft, plain_moved):
               + f"The runs that broke the most bonds peak highest ({max(soft, key=lambda r: r['broken'])['broken']} "
               f"broken at dx = {max(soft, key=lambda r: r['broken'])['dx'] * 1e3:.3f} mm, horizon "
               f"{max(soft, key=lambda r: r['broken'])['ratio'] * max(soft, key=lambda r: r['broken'])['dx'] * 1e3:.2f} mm, "
-              f"against {min(soft, key=lambda r: r['broken'])['broken']} at the fewest). A likely cause, not yet tested: "
-              "in a correspondence model a broken bond does not soften its particles (the shape tensor is renormalised "
-              "over the bonds left), so a softening bond that does not lie across the crack adds its force to a "
-              "continuum that kept its stiffness, and the more bonds break off the crack's line the stronger the beam. "
+              f"against {min(soft, key=lambda r: r['broken'])['broken']} at the fewest). "
+              "What the softening bonds add to the plain criterion's peak at the same spacing and horizon: "
+              + ", ".join(f"{(r['peak'] - p['peak']) / 1e3:+.3f} kN at {r['dx'] * 1e3:.3f} mm" for r, p in zip(m3, plain))
+              + ": nearly the same load at every spacing, so the spread of the regularised peaks is the plain "
+              "criterion's. In a correspondence model a broken bond does not soften its particles (the shape tensor "
+              "is renormalised over the bonds left, and the bonds still crossing carry the stress), which fits "
+              "a crack that still advances when the stress criterion says, at a load that depends on the spacing, "
+              "bridged by softening bonds with a load that does not (with them the peaks come later: at "
+              + ", ".join(f"{r['at'] * 1e3:.3f}" for r in m3) + " mm against the plain criterion's "
+              + ", ".join(f"{p['at'] * 1e3:.3f}" for p in plain) + " mm). Two diagnostics by hand (2026-12-05, a build "
+              "changed for the test and not kept; same runs otherwise): giving a softening force only to the "
+              "bonds that cross the notch's line lowers the peaks to 1.204, 1.029 and 0.950 kN (so the bonds off "
+              "the line carry about 0.27 kN of the excess, but the spread is still 27%); scaling each particle's "
+              "stress by its share of live bonds (a continuum softened by its damage) gives 1.351, 1.207 and "
+              "1.007 kN (34%). Neither regularises: what must change is when the crack advances (a breaking "
+              "rule that does not read a singular tip stress at the particle scale), not only what a broken "
+              "bond carries. "
               + ("No bond has opened to eta_u by the end: the process zone is still forming, and the peak is set by "
                  "the law's first part. " if all(r["spent"] == 0 for r in soft) else "")
               + "The law is linear and spends the whole G_f (the work of fracture Gregoire et al. measured); concrete's "
@@ -212,7 +225,7 @@ def main():
               f"lost a bond): the plain criterion dissipates a small part of the concrete's G_f = {G_F} N/m, and less "
               "the finer the spacing, as a stress criterion at a crack tip must (the energy a break releases scales "
               "with the spacing).", ""]
-    lines += soft_report(soft, moved)
+    lines += soft_report(soft, base, moved)
     lines += ["![load against load-point displacement](notched_beam.png)", ""]
     open(os.path.join(DOCS, "notched_beam.md"), "w").write("\n".join(lines))
     import matplotlib
