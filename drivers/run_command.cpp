@@ -145,6 +145,11 @@ int run(const Options& opt) {
                 scene.model.follower_pressure
                     ? "pressures follow the deformed surface; traction vectors stay dead loads (reference area)"
                     : "tractions and pressures stay nominal (model.follower_pressure: false)");
+  if (scene.damage && scene.damage->fracture_energy > 0.0)
+    std::printf("perinom: note: damage.fracture_energy: the broken bonds dissipate G_f per unit crack area, but "
+                "the crack still advances when the stress criterion says, so a peak load at a notch or crack tip "
+                "depends on the spacing (21%% over a halving: docs/verification/notched_beam.md); compare two "
+                "spacings\n");
   const Json pins = pin_results(p);
   std::fflush(stdout);
   const bool dynamic = solver_of(scene).dynamic;
