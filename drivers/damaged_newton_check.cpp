@@ -37,7 +37,10 @@ io::Json damaged_newton_check(Problem& p, const std::vector<double>& u) {
     for (int a = 0; a < d; ++a) held.push_back(static_cast<std::int64_t>(i) * d + a);
   // The broken model is linear elastic (the scene refuses damage with drucker_prager and
   // solver.check newton): its equilibrium at the final loads does not depend on the path,
-  // so one Newton step per stage reaches it.
+  // so one Newton step per stage reaches it. Softening bonds keep the largest openings the
+  // path committed; below them each is a secant spring, convex, so the path's balanced state
+  // (every opening at or below its kappa) is the one equilibrium of that secant body, and
+  // Newton from zero finds it unless an iterate takes a bond onto its softening branch.
   std::vector<LoadStage> stages = p.stages;
   for (std::size_t k = 0; k < stages.size(); ++k) {
     stages[k].steps = 1;

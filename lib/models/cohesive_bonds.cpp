@@ -53,6 +53,14 @@ void CohesiveBonds::add(const std::vector<std::pair<ParticleId, ParticleId>>& pa
     b.eta_e = r * law_.f_t / law_.E;
     bonds_.push_back(b);
   }
+  // The bonds of each particle, for tangent_row.
+  at_ptr_.assign(volume_.size() + 1, 0);
+  for (const Bond& b : bonds_) ++at_ptr_[b.i + 1], ++at_ptr_[b.j + 1];
+  for (std::size_t i = 0; i < volume_.size(); ++i) at_ptr_[i + 1] += at_ptr_[i];
+  at_bond_.assign(at_ptr_.back(), 0);
+  std::vector<std::size_t> next(at_ptr_.begin(), at_ptr_.end() - 1);
+  for (std::size_t k = 0; k < bonds_.size(); ++k) at_bond_[next[bonds_[k].i]++] = k, at_bond_[next[bonds_[k].j]++] = k;
+  slope_.assign(bonds_.size(), 0.0);
 }
 
 double CohesiveBonds::opening(const Bond& b, const double* u) const {
@@ -92,6 +100,54 @@ double CohesiveBonds::energy(const double* u) const {
     if (eta > 0.0) w += 0.5 * force(b, eta) * eta;
   }
   return w;
+}
+
+void CohesiveBonds::prepare_tangent(const double* u) {
+  slope_.assign(bonds_.size(), 0.0);
+  for (std::size_t k = 0; k < bonds_.size(); ++k) {
+    const Bond& b = bonds_[k];
+    const double eta = opening(b, u);
+    if (eta <= 0.0) continue;
+    if (eta < b.kappa) slope_[k] = envelope(b, b.kappa) / b.kappa;  // the secant
+    else if (eta < b.eta_e) slope_[k] = b.F0 / b.eta_e;
+    else if (eta < eta_u_) slope_[k] = -b.F0 / (eta_u_ - b.eta_e);
+  }
+}
+
+bool CohesiveBonds::touches(ParticleId i) const {
+  return std::size_t(i) + 1 < at_ptr_.size() && at_ptr_[i + 1] > at_ptr_[i];
+}
+
+void CohesiveBonds::tangent_row(ParticleId i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks,
+                                std::vector<ParticleId>& out_cols, std::vector<double>& out_blocks) const {
+  const int d = dim_, d2 = d * d;
+  out_cols = cols;
+  if (touches(i))
+    for (std::size_t m = at_ptr_[i]; m < at_ptr_[i + 1]; ++m) {
+      const Bond& b = bonds_[at_bond_[m]];
+      out_cols.push_back(i);
+      out_cols.push_back(b.i == i ? b.j : b.i);
+    }
+  std::sort(out_cols.begin(), out_cols.end());
+  out_cols.erase(std::unique(out_cols.begin(), out_cols.end()), out_cols.end());
+  out_blocks.assign(out_cols.size() * d2, 0.0);
+  auto slot = [&](ParticleId j) { return std::size_t(std::lower_bound(out_cols.begin(), out_cols.end(), j) - out_cols.begin()); };
+  for (std::size_t q = 0; q < cols.size(); ++q) {
+    const std::size_t r = slot(cols[q]);
+    for (int k = 0; k < d2; ++k) out_blocks[r * d2 + k] = blocks[q * d2 + k];
+  }
+  if (!touches(i)) return;
+  for (std::size_t m = at_ptr_[i]; m < at_ptr_[i + 1]; ++m) {
+    const Bond& b = bonds_[at_bond_[m]];
+    const double k = slope_.empty() ? 0.0 : slope_[at_bond_[m]];
+    const std::size_t ii = slot(i), jj = slot(b.i == i ? b.j : b.i);
+    for (int a = 0; a < d; ++a)
+      for (int c = 0; c < d; ++c) {
+        const double kee = k * b.e[a] * b.e[c];
+        out_blocks[(ii * d + a) * d + c] += kee;
+        out_blocks[(jj * d + a) * d + c] -= kee;
+      }
+  }
 }
 
 void CohesiveBonds::commit(const double* u) {

@@ -241,7 +241,7 @@ void CorrespondenceModel::visit_rows(
 
 void CorrespondenceModel::check_tangent_rows() const {
   if (cohesive_ && cohesive_->size() > 0)
-    throw std::logic_error("visit_tangent_rows: the tangent of softening bonds is not built");
+    throw std::logic_error("visit_tangent_rows(rows): the softening bonds' rows are built for the whole model only");
 }
 
 void CorrespondenceModel::soften_broken_bonds(const CohesiveLaw& law) {
@@ -250,13 +250,21 @@ void CorrespondenceModel::soften_broken_bonds(const CohesiveLaw& law) {
 }
 
 void CorrespondenceModel::visit_tangent_rows(const TangentRowVisitor& visit) const {
-  check_tangent_rows();
   // The follower rows as the last prepare_tangent left them; none before the first (the
   // symbolic pattern needs none: they only touch columns G's row already has).
   const std::size_t d3 = static_cast<std::size_t>(dim_) * dim_ * dim_;
   const bool follows = follower_ && follower_->active() && follower_tangent_.size() == particles() * d3;
   const double* local = follows ? follower_tangent_.data() : nullptr;
-  visit_rows(PointwiseTangent{C_.data(), C_stride_, volume_.data()}, visit, local);
+  const PointwiseTangent C{C_.data(), C_stride_, volume_.data()};
+  if (!cohesive_ || cohesive_->size() == 0) return visit_rows(C, visit, local);
+  // The softening bonds' rows join G's (their columns may be ones G's row lost with the break).
+  visit_rows(C, [&](std::size_t i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks) {
+    if (!cohesive_->touches(static_cast<ParticleId>(i))) return visit(i, cols, blocks);
+    std::vector<ParticleId> merged_cols;
+    std::vector<double> merged;
+    cohesive_->tangent_row(static_cast<ParticleId>(i), cols, blocks, merged_cols, merged);
+    visit(i, merged_cols, merged);
+  }, local);
 }
 
 void CorrespondenceModel::visit_tangent_rows(const std::vector<ParticleId>& rows, const TangentRowVisitor& visit) const {
@@ -271,6 +279,7 @@ void CorrespondenceModel::prepare_tangent(const double* u) {
   G_.apply(u, dim_, H_.data());
   if (follower_ && follower_->active()) follower_->tangent(H_.data(), follower_tangent_);
   C_stride_ = law_->tangents(H_.data(), C_);
+  if (cohesive_) cohesive_->prepare_tangent(u);
 }
 
 const PlasticPoints* CorrespondenceModel::plastic() const {

@@ -106,7 +106,6 @@ void read_fracture(Fields& top, Scene& s) {
       };
       if (!load_path) refuse("in a Verlet run (their dissipation is not in its energy balance)");
       if (s.plasticity) refuse("in a drucker_prager body");
-      if (s.solver.check == "newton") refuse("under solver.check: newton (their tangent)");
       if (s.output.checkpoint_every > 0) refuse("in checkpoints (output.checkpoint_every)");
     }
     if (load_path && d.every != 1)

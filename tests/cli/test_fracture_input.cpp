@@ -167,10 +167,6 @@ TEST_CASE("damage.fracture_energy is checked by key, and refused where softening
                                "criterion: stress, f_t: 1.0e6, fracture_energy: 50.0");
     require_rejected(s, {"damage.fracture_energy: softening bonds in a Verlet run"});
   }
-  SECTION("the Newton check") {
-    require_rejected(with(soft(""), "solver: {type: adr,", "solver: {type: adr, check: newton,"),
-                     {"damage.fracture_energy: softening bonds under solver.check: newton (their tangent) are not built"});
-  }
   SECTION("checkpoints") {
     require_rejected(with(soft(""), "output: {vtk_every: 0}", "output: {vtk_every: 0, checkpoint_every: 10}"),
                      {"damage.fracture_energy: softening bonds in checkpoints"});

@@ -237,6 +237,33 @@ TEST_CASE("solver.check: newton solves the broken notched beam again at its fina
   CHECK(o.out.find("perinom: Newton check at the final damage state") != std::string::npos);
 }
 
+TEST_CASE("solver.check: newton solves the beam with softening bonds again at its final damage state",
+          "[cli][fracture][load_path][newton]") {
+  // The same coarse beam with G_f = 143.2 N/m, 60 um in 100 steps: the load peaks at step 84
+  // and ends 9% lower with 75 bonds softening, none spent, so the check meets bonds on their
+  // secant (below their committed opening) and on the softening branch. Newton from zero with
+  // the softening bonds' tangent rows (CohesiveBonds::tangent_row): measured 5 iterations,
+  // displacement within 2.2e-6 and stress within 1.0e-5 of ADR's (tolerance 1e-6).
+  ScratchDir d;
+  const Outcome o = perinom(d, "run '" PERINOM_SOURCE_DIR "/examples/notched_beam.yaml' --out out "
+                               "--set discretization.dx=0.005 --set stages.0.steps=100 "
+                               "--set stages.0.boundary.2.displacement.y=-6.0e-5 --set solver.check=newton "
+                               "--set damage.fracture_energy=143.2");
+  INFO(o.out << o.err);
+  REQUIRE(o.exit_code == 0);
+  const auto t = columns(slurp(d.path / "out" / "load_steps.csv"));
+  const std::vector<double>& R = t.at("stages.0.boundary.2.Ry");
+  const auto peak = std::size_t(std::min_element(R.begin(), R.end()) - R.begin());  // the load pushes down
+  CHECK(peak + 5 < R.size());
+  CHECK(R.back() > 0.95 * R[peak]);  // past the peak: at least 5% less carried at the end
+  const std::string summary = slurp(d.path / "out" / "summary.json");
+  CHECK(json_number(summary, "softening_bonds_spent") == 0.0);
+  CHECK(summary.find("\"newton_converged\": true") != std::string::npos);
+  CHECK(json_number(summary, "newton_iterations") <= 10.0);
+  CHECK(json_number(summary, "displacement_relative_l2") < 1e-4);
+  CHECK(json_number(summary, "stress_relative_l2") < 1e-4);
+}
+
 TEST_CASE("the Newton check holds the detached particles of a shattered bar where the path left them",
           "[cli][fracture][load_path][newton]") {
   // The brittle bar with grips ends parted, 364 particles detached: their rows are empty, but

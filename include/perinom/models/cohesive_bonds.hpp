@@ -65,6 +65,18 @@ class CohesiveBonds {
   /// rows sorted (nullptr: every particle, r = i).
   void add_row_sums(const std::vector<ParticleId>* rows, double* sums) const;
 
+  /// dF/deta of every bond at u (V_i V_j included) for tangent_row: the rising or softening
+  /// branch's slope where eta >= kappa, the secant F(kappa) / kappa below it, 0 when closed.
+  void prepare_tangent(const double* u);
+  /// Whether particle i has a softening bond.
+  bool touches(ParticleId i) const;
+  /// Row i of the tangent with its bonds added: cols (sorted) and blocks (blocks[(q d + a) d + b]
+  /// = K_(i a),(cols[q] b), BlockRowVisitor's layout) merged with k e e^T at (i, i) and
+  /// -k e e^T at (i, j) for each bond (i, j), into out_cols (sorted) and out_blocks. k is 0
+  /// until prepare_tangent, and the columns do not depend on u (a symbolic pattern stays).
+  void tangent_row(ParticleId i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks,
+                   std::vector<ParticleId>& out_cols, std::vector<double>& out_blocks) const;
+
   /// The number of softening bonds, and of those spent (kappa >= eta_u: they carry nothing).
   std::size_t size() const { return bonds_.size(); }
   std::size_t spent() const;
@@ -85,6 +97,9 @@ class CohesiveBonds {
   CohesiveLaw law_;
   double eta_u_ = 0.0;
   std::vector<Bond> bonds_;
+  std::vector<double> slope_;  // dF/deta at the last prepare_tangent, by bond
+  // The bonds of each particle (CSR over particles, bond indices), built when bonds are added.
+  std::vector<std::size_t> at_ptr_, at_bond_;
   double opening(const Bond& b, const double* u) const;
   /// The envelope: the force at the largest opening kappa.
   double envelope(const Bond& b, double kappa) const;

@@ -192,7 +192,8 @@ class CorrespondenceModel : public LocalModel, public ModelHistory {
   /// From now on the bonds break_bonds breaks soften (cohesive_bonds.hpp) instead of
   /// vanishing: their pair forces join the force, the energy and the stiffness bound. The
   /// family sums are the live graph's now (after precracks, which cut_bonds refuses after
-  /// this call). Newton's tangent rows are not built for them: visit_tangent_rows throws
+  /// this call). The whole model's tangent rows (visit_tangent_rows, after prepare_tangent) add
+  /// their slopes at u (CohesiveBonds::tangent_row); the listed rows' variant throws
   /// std::logic_error once a bond softens. A whole model only (not after limit_rows).
   void soften_broken_bonds(const CohesiveLaw& law);
   /// The softening bonds, or nullptr.
@@ -264,7 +265,7 @@ class CorrespondenceModel : public LocalModel, public ModelHistory {
   std::optional<FollowerPressure> follower_;
   std::vector<double> follower_tangent_;  // its local rows at the last prepare_tangent
   std::unique_ptr<CohesiveBonds> cohesive_;  // soften_broken_bonds
-  /// visit_tangent_rows' refusal once a bond softens.
+  /// visit_tangent_rows(rows)' refusal once a bond softens.
   void check_tangent_rows() const;
   /// Replaces G by G~ (consistent_gradient.hpp) after keeping the trace of the facets.
   void make_consistent(const PointCloud& cloud, const Families& families, const BondWeights& weights,
