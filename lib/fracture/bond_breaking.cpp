@@ -193,7 +193,8 @@ BondBreaks BondBreaking::apply(const double* u, double* f) {
 }
 
 // state(): broken, finds, armed find, armed (0/1), s_hg_max, the number of groups, then each
-// group as its size and its bonds' ends in pairs.
+// group as its size and its bonds' ends in pairs; with softening bonds, then their committed
+// openings (one per broken bond, in the order broken).
 std::vector<double> BondBreaking::state() const {
   std::vector<double> s{double(broken_), double(finds_), double(armed_find_),
                         instability_ && instability_->armed() ? 1.0 : 0.0, hourglass_threshold(), double(groups_.size())};
@@ -203,6 +204,10 @@ std::vector<double> BondBreaking::state() const {
     s.push_back(double(n));
     for (std::size_t k = at; k < at + n; ++k) s.push_back(double(died_[k].first)), s.push_back(double(died_[k].second));
     at += n;
+  }
+  if (const CohesiveBonds* softening = model_->cohesive()) {
+    const std::vector<double> k = softening->kappas();
+    s.insert(s.end(), k.begin(), k.end());
   }
   return s;
 }
@@ -224,7 +229,12 @@ void BondBreaking::restore(const std::vector<double>& s) {
       if (!whole(s[k], n)) throw bad("the state names a particle beyond the cloud");
     at += 1 + 2 * std::size_t(s[at]);
   }
-  if (at != s.size()) throw bad("the state has values after its last group");
+  if (!whole(s[0], double(s.size()) + 1.0)) throw bad("the state's count of broken bonds does not fit it");
+  CohesiveBonds* softening = model_->cohesive();
+  const std::size_t groups_end = at, openings = softening ? std::size_t(s[0]) : 0;
+  if (softening && softening->size() != 0) throw bad("bonds soften already");
+  if (s.size() - at != openings)
+    throw bad(softening ? "the state does not hold one opening per softening bond" : "the state has values after its last group");
   // The row sums as a run keeps them: summed over every row of the model as built, then
   // updated on the rows each group changes (a sum over every row at the end would differ in
   // the last bits: its rows are accumulated in another order).
@@ -238,6 +248,7 @@ void BondBreaking::restore(const std::vector<double>& s) {
     apply();
   }
   if (broken_ != std::size_t(s[0])) throw bad("the recorded bonds do not match its count");
+  if (softening) softening->restore_kappas(std::vector<double>(s.begin() + groups_end, s.end()));
   finds_ = std::int64_t(s[1]), armed_find_ = std::int64_t(s[2]);
   if (s[3] != 0.0) instability_->rearm(s[4]);
   screen(screen_ != nullptr);  // a fresh snapshot: the same bonds, found anew

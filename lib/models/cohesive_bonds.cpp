@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace perinom {
 
@@ -169,6 +170,21 @@ void CohesiveBonds::add_row_sums(const std::vector<ParticleId>* rows, double* su
       for (int c = 0; c < d; ++c) sums[r * d + a] += 2.0 * k * std::abs(b.e[a] * b.e[c]);
   };
   for (const Bond& b : bonds_) add(b.i, b), add(b.j, b);
+}
+
+std::vector<double> CohesiveBonds::kappas() const {
+  std::vector<double> k(bonds_.size());
+  for (std::size_t b = 0; b < bonds_.size(); ++b) k[b] = bonds_[b].kappa;
+  return k;
+}
+
+void CohesiveBonds::restore_kappas(const std::vector<double>& kappa) {
+  if (kappa.size() != bonds_.size())
+    throw std::invalid_argument("CohesiveBonds::restore_kappas: " + std::to_string(kappa.size()) + " openings for " +
+                                std::to_string(bonds_.size()) + " softening bonds");
+  for (const double k : kappa)
+    if (!(k >= 0.0) || !std::isfinite(k)) throw std::invalid_argument("CohesiveBonds::restore_kappas: an opening is negative or not finite");
+  for (std::size_t b = 0; b < bonds_.size(); ++b) bonds_[b].kappa = kappa[b];
 }
 
 std::size_t CohesiveBonds::spent() const {

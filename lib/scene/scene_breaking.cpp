@@ -34,7 +34,7 @@ SceneBreaking::SceneBreaking(Problem& p) : p_(&p) {
               [b] { return b->state(); },
               [b](const std::vector<double>& s) { b->restore(s); },
               [b]() -> const std::vector<double>& { return b->row_sums(); }};
-  if (d->fracture_energy > 0.0) changes_.save = {}, changes_.restore = {}, changes_.dissipates = true;
+  if (d->fracture_energy > 0.0) changes_.dissipates = true;
 }
 
 void SceneBreaking::report(SolveReport& r, bool verlet) const {

@@ -106,7 +106,6 @@ void read_fracture(Fields& top, Scene& s) {
       };
       if (!load_path) refuse("in a Verlet run (their dissipation is not in its energy balance)");
       if (s.plasticity) refuse("in a drucker_prager body");
-      if (s.output.checkpoint_every > 0) refuse("in checkpoints (output.checkpoint_every)");
     }
     if (load_path && d.every != 1)
       f.fail("every", "applies to Verlet steps; a load path looks for bonds to break after every balance");

@@ -167,8 +167,4 @@ TEST_CASE("damage.fracture_energy is checked by key, and refused where softening
                                "criterion: stress, f_t: 1.0e6, fracture_energy: 50.0");
     require_rejected(s, {"damage.fracture_energy: softening bonds in a Verlet run"});
   }
-  SECTION("checkpoints") {
-    require_rejected(with(soft(""), "output: {vtk_every: 0}", "output: {vtk_every: 0, checkpoint_every: 10}"),
-                     {"damage.fracture_energy: softening bonds in checkpoints"});
-  }
 }

@@ -169,6 +169,28 @@ TEST_CASE("a load path that breaks bonds resumed after the break ends bit for bi
   CHECK(slurp(d.path / "reference" / "summary.json").find("\"breaking_steps\": 3") != std::string::npos);
 }
 
+TEST_CASE("a load path with softening bonds resumed mid-softening ends bit for bit", "[cli][checkpoint][fracture][load_path]") {
+  // The bar cracking in a band with G_f = 50 N/m (tests/cli/test_quasi_static_fracture.cpp):
+  // resumed at load step 150 of 200 (75 um), past the peak with the bonds softening, the restored
+  // bonds must carry their committed openings (kappa), or the softening and the energy
+  // account (dissipated_energy) would differ.
+  ScratchDir d;
+  const std::string scene = "'" PERINOM_SOURCE_DIR "/examples/brittle_bar.yaml' --set damage.fracture_energy=50"
+                            " --set 'damage.no_fail.0.region.box.max=[0.0435, 1.0]'"
+                            " --set 'damage.no_fail.1.region.box.min=[0.0565, -1.0]' --set stages.0.steps=200"
+                            " --set stages.0.boundary.2.displacement.x=1.0e-4";
+  require_ok(perinom(d, "run " + scene + " --out reference"));
+  require_ok(perinom(d, "run " + scene + " --out written --set output.checkpoint_every=150"));
+  require_same_results(d.path / "reference", d.path / "written");
+  const Outcome o = perinom(d, "run " + scene + " --restart written --out resumed");
+  require_ok(o);
+  CHECK(o.out.find("resuming from written/checkpoint.bin (load step 150 of stage 1)") != std::string::npos);
+  require_same_results(d.path / "reference", d.path / "resumed");
+  const std::string summary = slurp(d.path / "reference" / "summary.json");
+  CHECK(number_after(summary, "softening_bonds_spent") < number_after(summary, "bonds_broken"));
+  CHECK(number_after(summary, "bonds_broken") > 100);
+}
+
 TEST_CASE("a thin plate in Verlet resumed from a checkpoint ends bit for bit", "[cli][checkpoint]") {
   ScratchDir d;
   const std::string plate = "'" PERINOM_SOURCE_DIR "/examples/thin_plate_clamped.yaml'";

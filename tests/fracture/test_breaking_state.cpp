@@ -1,6 +1,7 @@
 // BondBreaking::state() and restore() (checkpoints of cracking runs): a fresh model restored
 // from a state breaks the same bonds into the same operator bits, and gives back the same
-// state; states that do not fit are refused. The whole run resumed is tests/cli/test_restart.cpp.
+// state (softening bonds with their committed openings); states that do not fit are refused.
+// The whole run resumed is tests/cli/test_restart.cpp.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <stdexcept>
 
 #include "perinom/fracture/bond_breaking.hpp"
+#include "perinom/models/cohesive_bonds.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/scene/problem.hpp"
 #include "perinom/scene/scene.hpp"
@@ -76,5 +78,46 @@ TEST_CASE("a bond-breaking state restored into a fresh model gives the same oper
     armed[3] = 1.0;  // the instability criterion's, restored into a stretch criterion
     CHECK_THROWS_AS(fresh.restore(armed), std::invalid_argument);
     CHECK_THROWS_AS(again.restore(state), std::invalid_argument);  // bonds broken already
+  }
+}
+
+TEST_CASE("with softening bonds the state holds their committed openings, and restores them", "[fracture][checkpoint][cohesive]") {
+  const Scene scene = read_scene(std::string(PERINOM_SOURCE_DIR) + "/examples/sent.yaml");
+  Problem a = build_problem(scene), b = build_problem(scene), plain = build_problem(scene);
+  const CohesiveLaw law{1.0e9, 2700.0, a.as<CorrespondenceModel>().material().E};
+  a.as<CorrespondenceModel>().soften_broken_bonds(law);
+  b.as<CorrespondenceModel>().soften_broken_bonds(law);
+  BondBreaking breaking(a.as<CorrespondenceModel>(), a.cloud, DamageCriterion::stretch, 0.01);
+  BondBreaking unsoftened(plain.as<CorrespondenceModel>(), plain.cloud, DamageCriterion::stretch, 0.01);
+  for (const double amount : {0.004, 0.008, 0.012, 0.006}) {  // find commits the openings first
+    const std::vector<double> u = pull(a.cloud, amount);
+    if (breaking.find(u.data()) > 0) breaking.apply();
+    if (unsoftened.find(u.data()) > 0) unsoftened.apply();
+  }
+  const CohesiveBonds& soft = *a.as<CorrespondenceModel>().cohesive();
+  REQUIRE(soft.size() == breaking.broken());
+  const std::vector<double> kappa = soft.kappas();
+  REQUIRE(std::count_if(kappa.begin(), kappa.end(), [](double k) { return k > 0.0; }) > 0);
+  const std::vector<double> state = breaking.state();
+  REQUIRE(state.size() == unsoftened.state().size() + soft.size());  // one opening per bond
+
+  BondBreaking again(b.as<CorrespondenceModel>(), b.cloud, DamageCriterion::stretch, 0.01);
+  again.restore(state);
+  CHECK(b.as<CorrespondenceModel>().cohesive()->kappas() == kappa);
+  CHECK(again.state() == state);
+  const std::vector<double> u = pull(a.cloud, 0.005);
+  std::vector<double> fa(u.size()), fb(u.size());
+  a.physics().internal_force(u.data(), fa.data());
+  b.physics().internal_force(u.data(), fb.data());
+  CHECK(fa == fb);  // bit for bit, the softening bonds' secant included
+
+  SECTION("a state without the openings, or with them into a model without softening bonds, is refused") {
+    Problem c = build_problem(scene), e = build_problem(scene);
+    c.as<CorrespondenceModel>().soften_broken_bonds(law);
+    BondBreaking fresh(c.as<CorrespondenceModel>(), c.cloud, DamageCriterion::stretch, 0.01);
+    CHECK_THROWS_AS(fresh.restore(unsoftened.state()), std::invalid_argument);
+    CHECK(c.as<CorrespondenceModel>().cohesive()->size() == 0);  // refused before any break
+    BondBreaking without(e.as<CorrespondenceModel>(), e.cloud, DamageCriterion::stretch, 0.01);
+    CHECK_THROWS_AS(without.restore(state), std::invalid_argument);
   }
 }

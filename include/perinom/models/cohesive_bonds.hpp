@@ -77,6 +77,12 @@ class CohesiveBonds {
   void tangent_row(ParticleId i, const std::vector<ParticleId>& cols, const std::vector<double>& blocks,
                    std::vector<ParticleId>& out_cols, std::vector<double>& out_blocks) const;
 
+  /// The committed openings kappa, in the order the bonds were added (a checkpoint's), and
+  /// their restoration on the same bonds added again in that order (throws
+  /// std::invalid_argument unless there is one finite, non-negative value per bond).
+  std::vector<double> kappas() const;
+  void restore_kappas(const std::vector<double>& kappa);
+
   /// The number of softening bonds, and of those spent (kappa >= eta_u: they carry nothing).
   std::size_t size() const { return bonds_.size(); }
   std::size_t spent() const;
