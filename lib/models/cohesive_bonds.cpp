@@ -123,12 +123,13 @@ void CohesiveBonds::tangent_row(ParticleId i, const std::vector<ParticleId>& col
                                 std::vector<ParticleId>& out_cols, std::vector<double>& out_blocks) const {
   const int d = dim_, d2 = d * d;
   out_cols = cols;
-  if (touches(i))
+  if (touches(i)) {
+    out_cols.push_back(i);
     for (std::size_t m = at_ptr_[i]; m < at_ptr_[i + 1]; ++m) {
       const Bond& b = bonds_[at_bond_[m]];
-      out_cols.push_back(i);
       out_cols.push_back(b.i == i ? b.j : b.i);
     }
+  }
   std::sort(out_cols.begin(), out_cols.end());
   out_cols.erase(std::unique(out_cols.begin(), out_cols.end()), out_cols.end());
   out_blocks.assign(out_cols.size() * d2, 0.0);
