@@ -36,6 +36,15 @@ CohesiveBonds::CohesiveBonds(int dim, const std::vector<double>& x, const std::v
     throw std::invalid_argument("CohesiveBonds: G_f is below the least for the longest bond (no softening branch)");
 }
 
+bool CohesiveBonds::at_peak(ParticleId i, ParticleId j, const double* u) const {
+  double r2 = 0.0, eta = 0.0;  // eta |xi|, against eta_e |xi| = |xi|^2 f_t / E
+  for (int a = 0; a < dim_; ++a) {
+    const double xi = x_[j * dim_ + a] - x_[i * dim_ + a];
+    r2 += xi * xi, eta += xi * (u[j * dim_ + a] - u[i * dim_ + a]);
+  }
+  return eta * law_.E >= r2 * law_.f_t;
+}
+
 void CohesiveBonds::add(const std::vector<std::pair<ParticleId, ParticleId>>& pairs) {
   for (const auto& [i, j] : pairs) {
     if (i == j || i < 0 || j < 0 || std::size_t(i) >= volume_.size() || std::size_t(j) >= volume_.size())

@@ -45,7 +45,9 @@ class BondBreaking {
   /// (CorrespondenceModel::soften_broken_bonds) it first commits their openings at u: u is a
   /// state the run keeps (a load path's balance). H: grad u at u when the caller has it
   /// (CorrespondenceModel::last_gradient() right after the force at u), else nullptr and the
-  /// instability and stress criteria take it from G.
+  /// instability and stress criteria take it from G. With softening bonds the stress
+  /// criterion keeps a bond over f_t only if it is opened to its law's peak
+  /// (CohesiveBonds::at_peak) or both its particles have such a bond over f_t.
   std::size_t find(const double* u, const double* H = nullptr);
   /// The bonds the last find() kept (row order), until apply().
   const std::vector<BondPair>& due() const { return due_; }
@@ -102,6 +104,7 @@ class BondBreaking {
   std::size_t w2_at_ = 0;
   void largest_ratio();
   std::vector<double> H_, sigma_, sigma1_;  // workspaces: grad u, stresses, sigma1
+  std::vector<char> cracking_;               // workspace: a particle with a bond due and at its law's peak
   std::unique_ptr<detail::RowScreen> screen_;  // null: every row is read
   int screened_measure_ = 0;                  // what the screen's snapshot measures (0: none)
   int since_snapshot_ = 0, skip_ = 0, backoff_ = 0;  // calls: since the snapshot, left unscreened, last backoff
