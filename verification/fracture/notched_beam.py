@@ -14,6 +14,7 @@ the finest spacing at 1e-6. Also the energy dissipated per unit crack area (load
 dissipated_energy) while the crack grew 15 mm, against Gregoire's G_f = 143.2 N/m.
 
 Softening bonds (damage.fracture_energy = G_f): 0.09 mm in 900 steps at the three spacings
+and at 0.893 mm (SOFT_FINEST)
 with the horizon 3.015 dx, and at the two finer ones with the coarsest one's horizon; read
 against the cohesive-crack FEM reference of verification/fem/notched_beam_cohesive.py (the
 limit their model should reach; its CSVs are committed).
@@ -33,6 +34,7 @@ SCENE = os.path.join(ROOT, "examples", "notched_beam.yaml")
 DOCS = os.path.join(ROOT, "docs", "verification")
 STEPS, TOTAL = 1500, 1.5e-4  # load steps, load-point displacement (m)
 SPACINGS = [0.0025, 0.0025 / 1.4, 0.00125]
+SOFT_FINEST = 0.00125 / 1.4  # the softening bonds go one spacing further (about 7 min)
 RATIO = 3.015  # the horizon over dx, as in the example
 SOFT_STEPS, SOFT_TOTAL = 900, 0.9e-4  # the softening runs: the same 0.1 um steps, past the peak
 NOTCH_X, NOTCH_TIP, THICKNESS = 0.0875, 0.025, 0.05  # m
@@ -54,11 +56,9 @@ def cohesive_reference():
     return peaks, {k: np.array(v) for k, v in curves.items()}
 
 
-def energy_per_crack_area(out, rows):
-    """The energy dissipated (load_steps.csv) per unit crack area while the crack grew GROWN
-    above the notch tip: at the first load step whose crack tip (the highest particle within
-    two spacings of the notch line that has lost a bond by then; break_event of the last
-    snapshot turned into load steps) is GROWN above the notch tip. None if it never got there."""
+def crack_events(out, rows):
+    """From the run's last snapshot: the particles' positions, their first break event (0: none),
+    the spacing, and for each load step the last break event it holds."""
     snapshot = sorted(f for f in os.listdir(out) if f.endswith(".vtu"))[-1]
     reader = vtk.vtkXMLUnstructuredGridReader()
     reader.SetFileName(os.path.join(out, snapshot))
@@ -67,12 +67,30 @@ def energy_per_crack_area(out, rows):
     x = vtk_to_numpy(g.GetPoints().GetData())
     event = vtk_to_numpy(g.GetPointData().GetArray("break_event")).astype(int)
     dx = abs(np.diff(np.unique(np.round(x[:, 0], 9)))).min()
-    ligament = (np.abs(x[:, 0] - NOTCH_X) < 2 * dx) & (x[:, 1] > NOTCH_TIP)
     last_event = np.cumsum([int(r["rounds"]) - 1 if float(r["broken_bonds"]) > 0 else 0 for r in rows])
-    for k, r in enumerate(rows):
+    return x, event, dx, last_event
+
+
+def cracked_by(out, rows):
+    """A function of a load step k (0-based): the crack's tip above the notch tip by then (m;
+    the highest particle within two spacings of the notch line that has lost a bond), or None."""
+    x, event, dx, last_event = crack_events(out, rows)
+    ligament = (np.abs(x[:, 0] - NOTCH_X) < 2 * dx) & (x[:, 1] > NOTCH_TIP)
+
+    def reach(k):
         cracked = ligament & (event > 0) & (event <= last_event[k])
-        if cracked.any() and x[cracked, 1].max() - NOTCH_TIP >= GROWN:
-            a = x[cracked, 1].max() - NOTCH_TIP
+        return float(x[cracked, 1].max() - NOTCH_TIP) if cracked.any() else None
+    return reach
+
+
+def energy_per_crack_area(out, rows):
+    """The energy dissipated (load_steps.csv) per unit crack area while the crack grew GROWN
+    above the notch tip: at the first load step whose crack tip (cracked_by) is GROWN above the
+    notch tip. None if it never got there."""
+    reach = cracked_by(out, rows)
+    for k, r in enumerate(rows):
+        a = reach(k)
+        if a is not None and a >= GROWN:
             return float(r["dissipated_energy"]) / (a * THICKNESS), a
     return None, None
 
@@ -106,107 +124,107 @@ def run(exe, dx, tol, work, reuse, soft=False, ratio=RATIO):
     broken = sum(float(r["broken_bonds"]) for r in rows)
     k = int(np.argmax(P))
     g_eff, grown = energy_per_crack_area(out, rows)
+    reach = cracked_by(out, rows)(k)
     spent = summary["solver"].get("fracture", {}).get("softening_bonds_spent", 0)
     return dict(dx=dx, tol=tol, soft=soft, ratio=ratio, spent=spent, code=t["code"], status=summary.get("status", "?"),
                 peak=P[k], at=u[k], end=P[-1],
                 broken=int(broken), iterations=summary["solver"].get("iterations", 0), wall=wall, rss=rss,
-                particles=summary.get("particles", 0), curve=(u, P), g_eff=g_eff, grown=grown,
+                particles=summary.get("particles", 0), curve=(u, P), g_eff=g_eff, grown=grown, reach=reach,
                 dissipated=float(rows[-1]["dissipated_energy"]))
 
 
 def soft_report(soft, plain, plain_moved):
     """The softening-bond section of the report: its table and what it shows (plain: the plain
     criterion's runs at the three spacings; plain_moved: how far their peak moved, %)."""
-    m3 = [r for r in soft if abs(r["ratio"] - RATIO) < 1e-9]
-    same = [r for r in soft if abs(r["ratio"] * r["dx"] - RATIO * SPACINGS[0]) < 1e-9]
+    m3 = [r for r in soft if abs(r["ratio"] - RATIO) < 1e-9 and r["tol"] == 1e-6]
+    three = [r for r in m3 if r["dx"] in SPACINGS]  # the issue's three spacings
+    same = [r for r in soft if abs(r["ratio"] * r["dx"] - RATIO * SPACINGS[0]) < 1e-9 and r["tol"] == 1e-6]
+    loose = [r for r in soft if r["tol"] == 1e-5]
     ref = m3[-1]
     lines = [f"## Softening bonds (`damage.fracture_energy: {G_F}`)", "",
-             "The same beam with Gregoire's G_f: each bond the criterion breaks keeps a softening pair force "
-             "whose work per unit crack area is G_f (docs/theory.md, \"Softening bonds\"; eta_u = pi G_f / (2 f_t) "
-             f"= {np.pi * G_F / (2 * 3.9e6) * 1e6:.1f} um). The load point goes {SOFT_TOTAL * 1e3:g} mm in {SOFT_STEPS} "
-             "load steps (the same 0.1 um steps), ADR tolerance 1e-6; at the three spacings with the horizon "
-             "3.015 dx, and at the two finer spacings again with the coarsest one's horizon (7.54 mm). "
-             "`spent`: bonds opened past eta_u.", "",
-             "| dx (mm) | horizon (mm) | particles | peak (kN) | at (mm) | load at the end (kN) | bonds broken | spent "
-             "| ADR iterations | wall (s) | memory (MiB) | peak against dx = 1.25 mm, horizon 3.015 dx |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "The same beam with Gregoire's G_f: a bond the stress criterion breaks keeps a softening pair force "
+             "whose work per unit crack area is G_f, and the criterion hands a bond over only when it is opened to "
+             "its law's peak or both its particles have such a bond (docs/theory.md, \"Softening bonds\"; eta_u = "
+             f"pi G_f / (2 f_t) = {np.pi * G_F / (2 * 3.9e6) * 1e6:.1f} um). The load point goes {SOFT_TOTAL * 1e3:g} mm "
+             f"in {SOFT_STEPS} load steps (0.1 um each); at the three spacings and at {SOFT_FINEST * 1e3:.3f} mm "
+             "with the horizon 3.015 dx (ADR tolerance 1e-6, and 1e-5 at the three for work against error), and at the two finer spacings again with the "
+             "coarsest one's horizon (7.54 mm). `spent`: bonds opened past eta_u. `crack at the peak`: the "
+             "highest particle near the notch line that has lost a bond by the peak's load step, above the notch.", "",
+             "| dx (mm) | horizon (mm) | ADR tolerance | particles | peak (kN) | at (mm) | crack at the peak (mm) "
+             "| load at the end (kN) | bonds broken | spent | ADR iterations | wall (s) | memory (MiB) "
+             f"| peak against dx = {SOFT_FINEST * 1e3:.3f} mm, horizon 3.015 dx, 1e-6 |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in soft:
-        lines.append(f"| {r['dx'] * 1e3:.3f} | {r['ratio'] * r['dx'] * 1e3:.2f} | {r['particles']} | {r['peak'] / 1e3:.4f} | "
-                     f"{r['at'] * 1e3:.4f} | {r['end'] / 1e3:.4f} | {r['broken']} | {r['spent']} | {r['iterations']} | "
-                     f"{r['wall']:.1f} | {r['rss']:.0f} | {(r['peak'] - ref['peak']) / ref['peak'] * 100:+.1f}% |")
-    moved = (m3[0]["peak"] - m3[-1]["peak"]) / m3[-1]["peak"] * 100
-    slope = np.polyfit(np.log([r["dx"] for r in m3]), np.log([r["peak"] for r in m3]), 1)[0]
-    peaks = [r["peak"] for r in same]
+        reach = f"{r['reach'] * 1e3:.2f}" if r["reach"] is not None else "-"
+        lines.append(f"| {r['dx'] * 1e3:.3f} | {r['ratio'] * r['dx'] * 1e3:.2f} | {r['tol']:g} | {r['particles']} | "
+                     f"{r['peak'] / 1e3:.4f} | {r['at'] * 1e3:.4f} | {reach} | {r['end'] / 1e3:.4f} | {r['broken']} | "
+                     f"{r['spent']} | {r['iterations']} | {r['wall']:.1f} | {r['rss']:.0f} | "
+                     f"{(r['peak'] - ref['peak']) / ref['peak'] * 100:+.1f}% |")
+    peaks = [r["peak"] for r in three]
     spread = (max(peaks) - min(peaks)) / min(peaks) * 100
-    inside = [r for r in soft if 930.0 <= r["peak"] <= 1110.0]
-    fem, _ = cohesive_reference()
+    held = [r["peak"] for r in same]
+    held_spread = (max(held) - min(held)) / min(held) * 100
+    fem, fem_curves = cohesive_reference()
+    fem_end = float(np.interp(SOFT_TOTAL, *fem_curves["bonds"].T))
+    vs_fem = ", ".join(f"{(r['peak'] - fem['bonds']) / fem['bonds'] * 100:+.1f}%" for r in m3)
+    last = (m3[-1]["peak"] - m3[-2]["peak"]) / m3[-2]["peak"] * 100
     lines += ["", "**The limit the model should reach.** As the spacing and the horizon shrink, the softening "
               "bonds should turn into a local elastic body with a cohesive crack whose traction is what the "
               "bonds crossing a flat crack carry: T(w) = f_t (2/pi) int cos^2(theta) max(0, 1 - w cos(theta) / "
               "eta_u) dtheta (a bond at theta to the normal opens by w cos(theta)); its area is G_f. "
               "verification/fem/notched_beam_cohesive.py solves that beam by FEM (the same geometry, supports "
               "and load patch; half beam, bilinear quadrilaterals at h = 1.25, 0.625, 0.3125 mm, the finest two "
-              f"within 0.1%): peak **{fem['bonds'] / 1e3:.3f} kN** with this law; {fem['linear'] / 1e3:.3f} kN with "
-              f"Hillerborg's linear law and {fem['bilinear'] / 1e3:.3f} kN with Petersson's bilinear one, the "
-              "same f_t and G_f. Against it the softening bonds' peaks at horizon 3.015 dx are "
-              + ", ".join(f"{(r['peak'] - fem['bonds']) / fem['bonds'] * 100:+.1f}%" for r in m3)
-              + " (dx = " + ", ".join(f"{r['dx'] * 1e3:.3f}" for r in m3) + " mm): they cross the limit instead of "
-              "approaching it. And the experiments' band (0.93-1.11 kN) lies below all three cohesive laws with "
-              f"f_t = 3.9 MPa and G_f = {G_F} N/m (the lowest, the bilinear law's, is "
-              f"{(fem['bilinear'] - 1110.0) / 1110.0 * 100:.0f}% above the band's top): a model that converges to "
-              "a cohesive crack with these inputs peaks above the band, so of the issue's two targets for this "
-              "beam (converged, in or near the band) the first is the one to aim at, at the FEM's peak.", ""]
-    lines += ["", f"With the horizon at 3.015 dx the peak at dx = 2.5 mm is {moved:.0f}% above the one at 1.25 mm "
-              f"(dx^{slope:.2f}; the plain criterion's moved {plain_moved:.0f}%): "
-              + ("the three peaks agree within 5%. " if abs(moved) <= 5.0 else
-                 "the relative spread is half the plain criterion's only because the softening bonds add a nearly "
-                 "constant load (below); the three peaks do not agree within 5%, which the issue asks. ")
-              + f"With the "
-              f"horizon held at 7.54 mm the three spacings' peaks spread by {spread:.1f}%: "
-              + ("within 5%, so what moves the peak is the horizon, the model's length, not the spacing. "
-                 if spread <= 5.0 else "more than 5% too. ")
-              + "The horizon is 0.15 to 0.30 of the 25 mm ligament here, and the nonlocal model converges to a local "
-              "one with a cohesive crack only as the horizon shrinks against the body. "
-              + (f"{len(inside)} of the {len(soft)} peaks fall in the experiments' band (0.93-1.11 kN). " if inside else
-                 "No peak falls in the experiments' band (0.93-1.11 kN): all are above it. ")
-              + f"The runs that broke the most bonds peak highest ({max(soft, key=lambda r: r['broken'])['broken']} "
-              f"broken at dx = {max(soft, key=lambda r: r['broken'])['dx'] * 1e3:.3f} mm, horizon "
-              f"{max(soft, key=lambda r: r['broken'])['ratio'] * max(soft, key=lambda r: r['broken'])['dx'] * 1e3:.2f} mm, "
-              f"against {min(soft, key=lambda r: r['broken'])['broken']} at the fewest). "
-              "What the softening bonds add to the plain criterion's peak at the same spacing and horizon: "
-              + ", ".join(f"{(r['peak'] - p['peak']) / 1e3:+.3f} kN at {r['dx'] * 1e3:.3f} mm" for r, p in zip(m3, plain))
-              + ": nearly the same load at every spacing, so the spread of the regularised peaks is the plain "
-              "criterion's. In a correspondence model a broken bond does not soften its particles (the shape tensor "
-              "is renormalised over the bonds left, and the bonds still crossing carry the stress), which fits "
-              "a crack that still advances when the stress criterion says, at a load that depends on the spacing, "
-              "bridged by softening bonds with a load that does not (with them the peaks come later: at "
-              + ", ".join(f"{r['at'] * 1e3:.3f}" for r in m3) + " mm against the plain criterion's "
-              + ", ".join(f"{p['at'] * 1e3:.3f}" for p in plain) + " mm). Two diagnostics by hand (2026-12-05, a build "
-              "changed for the test and not kept; same runs otherwise): giving a softening force only to the "
-              "bonds that cross the notch's line lowers the peaks to 1.204, 1.029 and 0.950 kN (so the bonds off "
-              "the line carry about 0.27 kN of the excess, but the spread is still 27%); scaling each particle's "
-              "stress by its share of live bonds (a continuum softened by its damage) gives 1.351, 1.207 and "
-              "1.007 kN (34%). Neither regularises: what must change is when the crack advances (a breaking "
-              "rule that does not read a singular tip stress at the particle scale), not only what a broken "
-              "bond carries. "
-              "The load step matters as well (by hand, 2026-12-05, the same runs with other step counts over "
-              "0.09 mm): at dx = 2.5 mm 1.432, 1.471, 1.407 and 1.407 kN with steps of 0.2, 0.1, 0.05 and 0.025 um; "
-              "at 1.786 mm 1.337, 1.322, 1.301 kN with 0.1, 0.05, 0.025 um; at 1.25 mm 1.220 and 1.202 kN with "
-              "0.1 and 0.05 um. So the table's 0.1 um steps carry up to 4.5% of step error, and with smaller "
-              "steps the peaks still spread (1.407 against 1.202 kN at 0.05 um, 17%). "
-              + ("No bond has opened to eta_u by the end: the process zone is still forming, and the peak is set by "
-                 "the law's first part. " if all(r["spent"] == 0 for r in soft) else "")
-              + "The law is linear and spends the whole G_f (the work of fracture Gregoire et al. measured); the "
-              f"cohesive law it gives a flat crack carries about what Hillerborg's linear one does ({fem['bonds'] / 1e3:.3f} "
-              f"against {fem['linear'] / 1e3:.3f} kN by the FEM), and concrete's steeper bilinear softening "
-              f"(Petersson 1981) {(fem['bonds'] - fem['bilinear']) / fem['bonds'] * 100:.0f}% less. "
-              "Where the crack is at the peak (by hand, 2026-12-05: the highest particle near the notch line that "
-              "has lost a bond by the peak step, against the FEM's highest open node): the FEM's cohesive crack "
-              "reaches 16.25 mm above the notch, the runs' 16.25, 11.6 and 10.6 mm at dx = 2.5, 1.786 and 1.25 mm: "
-              "the finer models lose the load with a shorter crack. "
-              + ("So the regularised option is built and dissipates G_f (the bar test: 1.032 G_f A), but on this beam "
-                 "its peak is not converged with the spacing at a fixed ratio, nor in the band: a miss, written down."
-                 if abs(moved) > 5.0 or not inside else ""), ""]
+              f"within 0.1%): peak **{fem['bonds'] / 1e3:.3f} kN** with this law, the crack then 16.25 mm above the "
+              f"notch; {fem['linear'] / 1e3:.3f} kN with Hillerborg's linear law and {fem['bilinear'] / 1e3:.3f} kN "
+              "with Petersson's bilinear one, the same f_t and G_f. The experiments' band (0.93-1.11 kN) lies below "
+              f"all three (the lowest, the bilinear law's, is {(fem['bilinear'] - 1110.0) / 1110.0 * 100:.0f}% above "
+              "the band's top): a model that converges to a cohesive crack with these inputs peaks above the band, "
+              "so of the issue's two targets for this beam (converged, in or near the band) the first is the one "
+              "to aim at, at the FEM's peak.", "",
+              f"**Result.** With the horizon at 3.015 dx the peaks at the issue's three spacings are "
+              + ", ".join(f"{r['peak'] / 1e3:.3f}" for r in three) + " kN at dx = "
+              + ", ".join(f"{r['dx'] * 1e3:.3f}" for r in three) + f" mm: a spread of **{spread:.2f}%** (the plain "
+              f"criterion's {plain_moved:.0f}%); one spacing further, {m3[-1]['dx'] * 1e3:.3f} mm, "
+              f"{m3[-1]['peak'] / 1e3:.3f} kN ({last:+.1f}% from the one before). Against the FEM's limit: {vs_fem}. "
+              + ("The issue's 5% is met. " if spread <= 5.0 else
+                 f"The issue asks for 5%: missed by {spread - 5.0:.2f} points, the coarsest spacing's error (its "
+                 "horizon is 0.3 of the ligament). ")
+              + "The load step is not what moves it (by hand, 2026-12-05: 0.05 um steps give 1.4050 and 1.3817 kN "
+              "at 2.5 and 1.786 mm against the table's 1.4057 and 1.3816). "
+              + f"With the horizon held at 7.54 mm the three spacings' peaks spread by {held_spread:.1f}% ("
+              + ", ".join(f"{r['peak'] / 1e3:.3f}" for r in same) + " kN at m = "
+              + ", ".join(f"{r['ratio']:.2f}" for r in same) + " horizons per spacing, "
+              + ", ".join(str(r["broken"]) for r in same) + " bonds broken)"
+              + (": the peak converges at a fixed ratio of horizon to spacing (the seed's practice), not at a fixed "
+                 "horizon with a growing family; why the larger families carry more is not measured yet. "
+                 if held_spread > 5.0 else ": within 5% too. ")
+              + "Work against error (the ADR tolerance 1e-5 against 1e-6 at each spacing): "
+              + ", ".join(f"{(l['peak'] - t['peak']) / t['peak'] * 100:+.2f}% of the peak in {l['wall']:.0f} s "
+                          f"against {t['wall']:.0f} s at {t['dx'] * 1e3:.3f} mm" for l, t in zip(loose, three))
+              + (": the tolerance moves the peak far less than the spacing does. "
+                 if max(abs(l["peak"] - t["peak"]) / t["peak"] * 100 for l, t in zip(loose, three)) < spread / 3
+                 else ": the tolerance moves the peak as much as a spacing does. ")
+              + "Where the crack is at the peak: "
+              + ", ".join(f"{r['reach'] * 1e3:.2f}" if r["reach"] is not None else "-" for r in m3)
+              + " mm above the notch at the four spacings, the FEM's cohesive crack 16.25 mm (the old rule's: 16.25, 11.6, 10.6 mm). Past the peak the runs soften more "
+              f"slowly than the FEM: at {SOFT_TOTAL * 1e3:g} mm they carry "
+              + ", ".join(f"{r['end'] / 1e3:.3f}" for r in m3) + f" kN against its {fem_end / 1e3:.3f} kN (why is not studied yet).", "",
+              "**Before the gate** (the rule of the last session, by hand on 2026-12-05 with "
+              "builds changed for the test, not kept; the same scene, 900 steps of 0.1 um unless said): "
+              "every bond the plain criterion breaks became a softening bond, and the peaks were 1.471, 1.337 and "
+              "1.220 kN (21%; +8.9%, -1.0%, -9.7% from the FEM, crossing the limit), the softening bonds adding "
+              "a nearly constant +0.49 to +0.53 kN to the plain criterion's peaks, with up to 4.5% of load-step "
+              "error at 0.1 um. What was tried, with the peaks at the three spacings: a softening force only on "
+              "the bonds crossing the notch's line, all others breaking as before: 1.204, 1.029, 0.950 kN; each "
+              "particle's stress scaled by its share of live bonds: 1.351, 1.207, 1.007; the criterion on the "
+              "bond's own normal stress e . sigma e (sigma the pair's mean): 1.592, 1.432, 1.263; breaking only "
+              "the bonds across the notch's line (a diagnostic that knows the path): **1.398, 1.348, 1.338**; "
+              "the stress criterion and the bond at its law's peak (the gate's first condition alone): 1.398, "
+              "1.353, 1.339, unchanged with 0.05 um steps (1.3985, 1.3534, 1.3394), but a bar under uniform "
+              "tension then carries 1.95 f_t A, its inclined bonds renormalised and never opened, which the "
+              "second condition mends (the bar test: 195 N against f_t A = 200 N, 1.032 G_f A dissipated, as "
+              "before); the bond's stretch over f_t / E alone (no stress criterion): 1.328, 1.313, 1.323. "
+              "So what moved the peak was the band of bonds cut beside the crack, which no crack opens.", ""]
     return lines
 
 
@@ -218,10 +236,11 @@ def main():
     os.makedirs(work, exist_ok=True)
     cases = [(dx, 1e-6) for dx in SPACINGS] + [(dx, t) for dx in SPACINGS[:2] for t in (1e-5, 1e-7)]
     cases += [(SPACINGS[2], 1e-5)]
-    # The softening bonds at the three spacings (horizon 3.015 dx), and at the two finer ones
+    # The softening bonds at the three spacings and one finer (horizon 3.015 dx), at the two finer ones
     # with the coarsest one's horizon (7.54 mm): which of the two lengths moves the peak.
-    soft_cases = [(dx, 1e-6, True, RATIO) for dx in SPACINGS]
+    soft_cases = [(dx, 1e-6, True, RATIO) for dx in SPACINGS + [SOFT_FINEST]]
     soft_cases += [(dx, 1e-6, True, RATIO * SPACINGS[0] / dx) for dx in SPACINGS[1:]]
+    soft_cases += [(dx, 1e-5, True, RATIO) for dx in SPACINGS]  # work against error
     # Two runs at a time (the machine's two cores): the wall times are those of a busy machine.
     from concurrent.futures import ThreadPoolExecutor
     with ThreadPoolExecutor(2) as pool:
@@ -276,11 +295,11 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.5), sharey=True)
-    for ax, runs, title in ((axes[0], base, "plain stress criterion"), (axes[1], soft, f"softening bonds, G_f = {G_F} N/m")):
+    for ax, runs, title in ((axes[0], base, "plain stress criterion"), (axes[1], [r for r in soft if r["tol"] == 1e-6], f"softening bonds, G_f = {G_F} N/m")):
         for r in runs:
             u, P = r["curve"]
             ax.plot(u * 1e3, P / 1e3, label=f"dx = {r['dx'] * 1e3:.3f} mm, horizon {r['ratio'] * r['dx'] * 1e3:.2f} mm")
-        if runs is soft:
+        if runs is not base:
             c = cohesive_reference()[1]["bonds"]
             ax.plot(c[:, 0] * 1e3, c[:, 1] / 1e3, "k--", label="cohesive crack, FEM (the bonds' law)")
         ax.axhspan(0.93, 1.11, color="0.85", label="experiments' peaks")
