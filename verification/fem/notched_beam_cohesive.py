@@ -23,7 +23,9 @@ What is solved
     (T(0) = f_t, its area G_f);
   - "linear": T = f_t (1 - w / w_c), w_c = 2 G_f / f_t (Hillerborg's fictitious crack);
   - "bilinear": Petersson (1981), from f_t to f_t / 3 at w_1 = 0.8 G_f / f_t, then to zero at
-    3.6 G_f / f_t.
+    3.6 G_f / f_t;
+  - "bonds_grip": the bonds' law with the ligament above y = 42 mm held closed (the penalty
+    only), as the scene's no-fail box under the load holds it (its bonds never break).
   Before it opens the crack is held by a penalty k_p = f_t / w_e, w_e = 1e-10 m (about 600
   times an element's stiffness E / h at h = 0.625 mm), which also keeps the faces from
   interpenetrating.
@@ -62,6 +64,7 @@ F_T, G_F = 3.9e6, 143.2  # Pa, N/m
 HALF, DEPTH, NOTCH, SUPPORT = 0.0875, 0.05, 0.025, 0.025  # m
 PATCH_X, PATCH_Y = 0.085, 0.0475  # the load patch: x >= PATCH_X, y >= PATCH_Y (m)
 W_E = 1.0e-10  # the penalty's opening at f_t (m)
+GRIP_Y = 0.042  # "bonds_grip": the ligament above this height never opens (the scene's no-fail box under the load)
 STEP, TOTAL = 1.0e-7, 9.0e-5  # load-point displacement per step and in all (m), as notched_beam.py
 
 
@@ -74,7 +77,7 @@ def law(name):
         w1, wc = 0.8 * G_F / F_T, 3.6 * G_F / F_T
         k1, k2 = (F_T - F_T / 3.0) / w1, (F_T / 3.0) / (wc - w1)
         return lambda w: ((F_T - k1 * w, -k1) if w < w1 else ((F_T / 3.0 - k2 * (w - w1), -k2) if w < wc else (0.0, 0.0)))
-    if name == "bonds":
+    if name in ("bonds", "bonds_grip"):
         eta_u = np.pi * G_F / (2.0 * F_T)
         n = 20000
         th = (np.arange(n) + 0.5) * (np.pi / n) - np.pi / 2.0  # midpoints on (-pi/2, pi/2)
@@ -155,10 +158,12 @@ def solve(h, names):
     out = {}
     for name in names:
         T = law(name)
+        # "bonds_grip": the nodes in the scene's no-fail grip keep the penalty, never softening.
+        held = (ys[lig] >= GRIP_Y - eps) if name == "bonds_grip" else np.zeros(len(lig), bool)
 
         def q_of(u):
             w = -2.0 * u
-            tq = [traction(T, x) for x in w]
+            tq = [(F_T * x / W_E, F_T / W_E) if k else traction(T, x) for x, k in zip(w, held)]
             q = np.array([t[0] for t in tq]) * trib * B
             dq = np.array([t[1] for t in tq]) * trib * B * (-2.0)
             return q, dq
@@ -184,7 +189,7 @@ def solve(h, names):
                 continue
             u, D = x, target
             w = -2.0 * u
-            if np.any((w_last > W_E) & (w < w_last - 1e-15)):  # an open face closing
+            if np.any((w_last > W_E) & (w < w_last - 1e-15) & ~held):  # an open face closing
                 sys.exit(f"{name} h {h}: an opening decreased (unloading is not modelled)")
             w_last = w
             q, _ = q_of(u)
@@ -205,7 +210,8 @@ def solve(h, names):
         ws = np.linspace(0.0, max(w.max(), 2.0 * W_E), 20001)  # the work of T up to each opening
         Ts = np.array([traction(T, x)[0] for x in ws])
         area = np.concatenate([[0.0], np.cumsum(0.5 * (Ts[1:] + Ts[:-1]) * np.diff(ws))])
-        cohesive = float(np.sum(np.interp(w, ws, area) * trib * B / 2.0))  # the half's faces move w / 2
+        stored = np.where(held, 0.5 * F_T / W_E * w * w, np.interp(w, ws, area))  # per unit area
+        cohesive = float(np.sum(stored * trib * B / 2.0))  # the half's faces move w / 2
         out[name] = dict(curve=c, peak=c[:, 1].max(), at=c[np.argmax(c[:, 1]), 0],
                          work=work, strain=strain, cohesive=cohesive, nodes=len(L))
         print(f"h {h * 1e3:.4f} mm {name:8s}: peak {c[:, 1].max():8.2f} N at {c[np.argmax(c[:, 1]), 0] * 1e3:.4f} mm; "
@@ -217,7 +223,7 @@ def solve(h, names):
 
 
 def main():
-    names = ["bonds", "linear", "bilinear"]
+    names = ["bonds", "linear", "bilinear", "bonds_grip"]
     sizes = [1.25e-3, 0.625e-3, 0.3125e-3]
     res = {h: solve(h, names) for h in sizes}
     for name in names:
