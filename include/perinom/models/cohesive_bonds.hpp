@@ -55,7 +55,8 @@ class CohesiveBonds {
   double opening_limit() const { return eta_u_; }
 
   /// Whether the pair (i, j) is opened at u to its law's peak: e . (u_j - u_i) >= eta_e =
-  /// |xi| f_t / E. The stress criterion hands a bond to the law only then (BondBreaking::find).
+  /// |xi| f_t / E. The stress criterion hands a bond to the law when it is, or when both its
+  /// particles have such a bond (BondBreaking::find).
   bool at_peak(ParticleId i, ParticleId j, const double* u) const;
 
   /// Makes the pairs (i, j) (each once, i != j) softening bonds from now on, with kappa 0.
