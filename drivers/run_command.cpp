@@ -30,6 +30,7 @@
 #include "snapshot.hpp"
 #include "solve_scene.hpp"
 #include "stability_check.hpp"
+#include "support_check.hpp"
 #include "terminal_progress.hpp"
 
 namespace perinom::cli {
@@ -152,7 +153,8 @@ int run(const Options& opt) {
   const Json pins = pin_results(p);
   std::fflush(stdout);
   const bool dynamic = solver_of(scene).dynamic;
-  if (!dynamic) warn_if_unstable(p);
+  bool free_motion = false;
+  if (!dynamic) warn_if_unstable(p), free_motion = warn_if_free(p);
   else if (scene.solver.allow_unstable &&
            (scene.model.formulation == "improved" || scene.model.formulation == "strong"))
     std::fprintf(stderr, "perinom: warning: model.formulation %s in explicit dynamics (solver.allow_unstable): "
@@ -301,7 +303,8 @@ int run(const Options& opt) {
   // A load step that did not balance (ADR's max_iterations, or solver.max_rounds) leaves the
   // path not converged, as ADR alone would: exit 1. Divergence and Newton failures: exit 3.
   if (!failure.empty() && scene.load_path() && !rep.diverged && scene.solver.type != "newton") {
-    std::fprintf(stderr, "perinom: NOT converged: %s; the last balanced state and results in %s\n", failure.c_str(),
+    std::fprintf(stderr, "perinom: NOT converged: %s%s; the last balanced state and results in %s\n", failure.c_str(),
+                 free_motion ? " (the supports leave a rigid motion free: the warning at the start names it)" : "",
                  dir.c_str());
     return 1;
   }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include <Eigen/Dense>
+
 #include "perinom/core/error.hpp"
 
 namespace perinom {
@@ -49,6 +51,26 @@ double smallest_pivot(std::vector<double> A, int m) {
     }
   }
   return smallest;
+}
+
+/// Component c of the d (d + 1) / 2 rigid modes at x: translations, then rotations about
+/// `origin` over the length L (u = w x r, r = (x - origin) / L; in 2-D the rotation about z
+/// moves x by -w y and y by w x; in 3-D columns 3, 4, 5 turn about x, y, z). L = 0: the
+/// translations only.
+std::vector<double> rigid_mode_row(const double* x, const double* origin, double L, int c, int d) {
+  std::vector<double> row(static_cast<std::size_t>(d * (d + 1) / 2), 0.0);
+  row[c] = 1.0;
+  if (!(L > 0.0)) return row;
+  std::array<double, 3> r{0, 0, 0};
+  for (int a = 0; a < d; ++a) r[a] = (x[a] - origin[a]) / L;
+  if (d == 2) {
+    row[2] = c == 0 ? -r[1] : r[0];
+  } else {
+    if (c == 0) row[4] = r[2], row[5] = -r[1];
+    if (c == 1) row[3] = -r[2], row[5] = r[0];
+    if (c == 2) row[3] = r[1], row[4] = -r[0];
+  }
+  return row;
 }
 
 }  // namespace
@@ -119,28 +141,63 @@ std::vector<RigidBodyPin> rigid_body_pins(const PointCloud& cloud) {
   std::vector<double> M;
   for (const auto& pin : pins)
     for (const int c : pin.components) {
-      const double* x = cloud.point(pin.particle);
-      std::vector<double> row(m, 0.0);
-      row[c] = 1.0;
-      if (L > 0.0) {
-        // u = w x r (r from the origin A): rotation about z moves x by -w y and y by w x.
-        const double* xa = cloud.point(A);
-        std::array<double, 3> r{0, 0, 0};
-        for (int a = 0; a < d; ++a) r[a] = (x[a] - xa[a]) / L;
-        if (d == 2) {
-          row[2] = c == 0 ? -r[1] : r[0];
-        } else {
-          // columns 3, 4, 5: rotations about x, y, z; the entries are (w x r)_c.
-          if (c == 0) row[4] = r[2], row[5] = -r[1];
-          if (c == 1) row[3] = -r[2], row[5] = r[0];
-          if (c == 2) row[3] = r[1], row[4] = -r[0];
-        }
-      }
+      const std::vector<double> row = rigid_mode_row(cloud.point(pin.particle), cloud.point(A), L, c, d);
       M.insert(M.end(), row.begin(), row.end());
     }
   if (!(L > 0.0) || smallest_pivot(M, m) < 1e-3)
     throw InputError("the pins do not determine the body's rigid motion (the body is too small or too thin for them)");
   return pins;
+}
+
+std::vector<FreeRigidMotion> free_rigid_motions(const PointCloud& cloud, const Loading& loading) {
+  const int d = cloud.dim;
+  const int m = d * (d + 1) / 2;
+  const LoadResultant shape = load_resultant(cloud, {});
+  const double L = shape.length > 0.0 ? shape.length : 1.0;  // one particle: its turns are free
+  auto mode = [&](std::int64_t dof) {
+    const std::vector<double> row =
+        rigid_mode_row(cloud.point(static_cast<std::size_t>(dof / d)), shape.about.data(), L, static_cast<int>(dof % d), d);
+    return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(row.data(), m));
+  };
+  // G = A^T A, A's row k what constraint k reads of the rigid modes: u[fixed] / scale +
+  // sum_c coef[c] u[coupled[c]] for a face-located one, u[fixed] for one at its particle.
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(m, m);
+  for (std::size_t k = 0; k < loading.fixed.size(); ++k) {
+    Eigen::VectorXd a = mode(loading.fixed[k]);
+    if (!loading.couplings.empty() && loading.couplings[k + 1] > loading.couplings[k]) {
+      a /= loading.scale[k];
+      for (Offset c = loading.couplings[k]; c < loading.couplings[k + 1]; ++c) a += loading.coef[c] * mode(loading.coupled[c]);
+    }
+    G += a * a.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(G);
+  // A held mode moves some held dof by at least a particle's lever over L; rounding leaves
+  // a free one near 1e-16 of the largest eigenvalue.
+  const double floor = 1e-10 * std::max(1.0, eig.eigenvalues().maxCoeff());
+  std::vector<FreeRigidMotion> out;
+  for (int e = 0; e < m; ++e) {
+    if (eig.eigenvalues()[e] > floor) continue;
+    const Eigen::VectorXd v = eig.eigenvectors().col(e);
+    FreeRigidMotion f;
+    const int rotations = d == 2 ? 1 : 3;
+    double t2 = 0.0, w2 = 0.0;
+    for (int a = 0; a < d; ++a) f.translation[a] = v[a], t2 += v[a] * v[a];
+    for (int a = 0; a < rotations; ++a) f.rotation[d == 2 ? 2 : a] = v[d + a] / L, w2 += v[d + a] * v[d + a];
+    f.turns = w2 > 1e-12 * t2;
+    f.point = shape.about;
+    if (f.turns) {
+      // The axis: the points whose velocity t + w x (x - c) is along w, x = c + w x t / |w|^2.
+      const auto& w = f.rotation;
+      const auto& t = f.translation;
+      const double ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+      f.point[0] += (w[1] * t[2] - w[2] * t[1]) / ww;
+      f.point[1] += (w[2] * t[0] - w[0] * t[2]) / ww;
+      f.point[2] += (w[0] * t[1] - w[1] * t[0]) / ww;
+      if (d == 2) f.point[2] = 0.0;
+    }
+    out.push_back(f);
+  }
+  return out;
 }
 
 }  // namespace perinom

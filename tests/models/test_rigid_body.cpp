@@ -121,3 +121,71 @@ TEST_CASE("a point region selects the one particle nearest its point", "[geometr
   for (std::size_t i = 0; i < c.size(); ++i)
     CHECK(std::hypot(c.x[i * 2] - 0.2, c.x[i * 2 + 1] - 5.9) >= std::hypot(c.x[ids[0] * 2] - 0.2, c.x[ids[0] * 2 + 1] - 5.9));
 }
+
+namespace {
+
+/// Holds component a of every particle whose coordinate `along` is below `below`.
+void hold_where(Loading& l, const PointCloud& c, int along, double below, int a) {
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (c.point(i)[along] < below) l.fix(static_cast<std::int64_t>(i) * c.dim + a, 0.0);
+}
+
+ParticleId nearest_to(const PointCloud& c, std::array<double, 3> p) {
+  Region r;
+  r.is_side = false;
+  r.is_point = true;
+  r.point = p;
+  return select(r, BoxGeometry{}, c).at(0);
+}
+
+}  // namespace
+
+TEST_CASE("the free rigid motions of supports: none when held, the one left when not", "[models][rigid_body]") {
+  SECTION("2-D: a face held across, then a point along it") {
+    const PointCloud c = test::lattice(2, 9, 0.0);
+    Loading l;
+    CHECK(free_rigid_motions(c, l).size() == 3);  // nothing held
+    hold_where(l, c, 0, 1.0, 0);                  // the left column in x
+    auto free = free_rigid_motions(c, l);
+    REQUIRE(free.size() == 1);
+    CHECK_FALSE(free[0].turns);
+    CHECK(std::abs(free[0].translation[0]) < 1e-12);
+    CHECK(std::abs(free[0].translation[1]) > 0.5);
+    l.fix(static_cast<std::int64_t>(nearest_to(c, {0.0, 0.0, 0.0})) * 2 + 1, 0.0);
+    CHECK(free_rigid_motions(c, l).empty());
+  }
+  SECTION("2-D: one particle held in x and y leaves the turn about it") {
+    const PointCloud c = test::lattice(2, 9, 0.3);
+    Loading l;
+    const ParticleId i = nearest_to(c, {2.0, 7.0, 0.0});
+    l.fix(static_cast<std::int64_t>(i) * 2, 0.0), l.fix(static_cast<std::int64_t>(i) * 2 + 1, 0.0);
+    const auto free = free_rigid_motions(c, l);
+    REQUIRE(free.size() == 1);
+    CHECK(free[0].turns);
+    CHECK(free[0].point[0] == Approx(c.point(i)[0]).margin(1e-9));
+    CHECK(free[0].point[1] == Approx(c.point(i)[1]).margin(1e-9));
+  }
+  SECTION("3-D: a bar held by its end faces and two points on one line turns about that line") {
+    BoxGeometry box;
+    box.dim = 3;
+    box.max = {0.1, 0.02, 0.02};
+    const PointCloud c = make_lattice(box, 0.0025, 0.0, 1);
+    Loading l;
+    hold_where(l, c, 0, 0.0025, 0);
+    for (std::size_t i = 0; i < c.size(); ++i)
+      if (c.point(i)[0] > 0.0975) l.fix(static_cast<std::int64_t>(i) * 3, 0.0);
+    const ParticleId P = nearest_to(c, {0.0, 0.0, 0.0}), Q = nearest_to(c, {0.1, 0.0, 0.0});
+    for (const ParticleId i : {P, Q})
+      for (const int a : {1, 2}) l.fix(static_cast<std::int64_t>(i) * 3 + a, 0.0);
+    const auto free = free_rigid_motions(c, l);
+    REQUIRE(free.size() == 1);
+    CHECK(free[0].turns);
+    CHECK(std::abs(free[0].rotation[1]) < 1e-9 * std::abs(free[0].rotation[0]));
+    CHECK(std::abs(free[0].rotation[2]) < 1e-9 * std::abs(free[0].rotation[0]));
+    CHECK(free[0].point[1] == Approx(c.point(P)[1]).margin(1e-12));  // the axis through P and Q
+    CHECK(free[0].point[2] == Approx(c.point(P)[2]).margin(1e-12));
+    // A point off that line held in z holds the turn.
+    l.fix(static_cast<std::int64_t>(nearest_to(c, {0.0, 0.02, 0.0})) * 3 + 2, 0.0);
+    CHECK(free_rigid_motions(c, l).empty());
+  }
+}

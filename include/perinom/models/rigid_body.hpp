@@ -6,6 +6,7 @@
 
 #include "perinom/core/types.hpp"
 #include "perinom/geometry/point_cloud.hpp"
+#include "perinom/models/loading.hpp"
 
 namespace perinom {
 
@@ -35,5 +36,19 @@ struct RigidBodyPin {
 /// the rotations that move it across e1, C the rotation about e1. Throws InputError when the
 /// pins do not determine the rigid modes (a body too small to hold them apart).
 std::vector<RigidBodyPin> rigid_body_pins(const PointCloud& cloud);
+
+/// A rigid motion no held dof resists: velocity t + w x (x - point). `turns`: a rotation
+/// about the axis along w through `point` (with t along w, if any); otherwise a translation
+/// along t (w zero). Unnormalised.
+struct FreeRigidMotion {
+  std::array<double, 3> translation{0, 0, 0}, rotation{0, 0, 0}, point{0, 0, 0};
+  bool turns = false;
+};
+
+/// The rigid motions of the cloud that the loading's constraints leave at rest (a
+/// face-located one read as it acts, at its face point): a basis of that space, empty when
+/// the supports hold the body. A static balance needs it empty, or loads without force or
+/// moment along what it holds.
+std::vector<FreeRigidMotion> free_rigid_motions(const PointCloud& cloud, const Loading& loading);
 
 }  // namespace perinom
