@@ -306,6 +306,7 @@ int run(const Options& opt) {
     std::fprintf(stderr, "perinom: NOT converged: %s%s; the last balanced state and results in %s\n", failure.c_str(),
                  free_motion ? " (the supports leave a rigid motion free: the warning at the start names it)" : "",
                  dir.c_str());
+    if (scene.damage) explain_free_pieces(p, rep.history);
     return 1;
   }
   if (!failure.empty()) throw SolveError(failure + "; results in " + dir);

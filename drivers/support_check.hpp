@@ -4,6 +4,7 @@
 // that frees a piece makes one) and stops unbalanced after max_iterations, Newton meets a
 // singular tangent; the warning names the motion first.
 #include "perinom/scene/problem.hpp"
+#include "perinom/solvers/history.hpp"
 
 namespace perinom::cli {
 
@@ -11,5 +12,11 @@ namespace perinom::cli {
 /// naming the rigid motions its constraints leave free. Nothing for models whose dofs are not
 /// the particles' displacements (plates). Returns whether it warned.
 bool warn_if_free(const Problem& p);
+
+/// After a load path with bond breaking stopped unbalanced (its load-step table `steps`,
+/// whose last row is the last balanced step): names the pieces the cracks have cut the body
+/// into (joined by live bonds; detached particles apart) whose supports in the stage that
+/// failed leave them a rigid motion (stdout). Returns whether it named any.
+bool explain_free_pieces(const Problem& p, const History& steps);
 
 }  // namespace perinom::cli

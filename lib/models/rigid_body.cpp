@@ -11,17 +11,31 @@
 namespace perinom {
 namespace {
 
-std::array<double, 3> centroid(const PointCloud& cloud) {
+/// The volume centroid and the bounding-box diagonal of the particles flagged in `within`
+/// (empty: all).
+struct Extent {
+  std::array<double, 3> about{0, 0, 0};
+  double length = 0.0;
+};
+Extent extent(const PointCloud& cloud, const std::vector<std::uint8_t>& within = {}) {
   const int d = cloud.dim;
-  std::array<double, 3> c{0, 0, 0};
+  Extent e;
+  std::array<double, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
   double volume = 0.0;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    for (int a = 0; a < d; ++a) c[a] += cloud.volume[i] * cloud.x[i * d + a];
+    if (!within.empty() && !within[i]) continue;
+    for (int a = 0; a < d; ++a) {
+      const double x = cloud.x[i * d + a];
+      e.about[a] += cloud.volume[i] * x, lo[a] = std::min(lo[a], x), hi[a] = std::max(hi[a], x);
+    }
     volume += cloud.volume[i];
   }
-  for (int a = 0; a < d; ++a) c[a] /= volume;
-  return c;
+  for (int a = 0; a < d; ++a) e.about[a] /= volume, e.length += (hi[a] - lo[a]) * (hi[a] - lo[a]);
+  e.length = std::sqrt(e.length);
+  return e;
 }
+
+std::array<double, 3> centroid(const PointCloud& cloud) { return extent(cloud).about; }
 
 ParticleId nearest(const PointCloud& cloud, const std::array<double, 3>& p) {
   const int d = cloud.dim;
@@ -84,12 +98,8 @@ bool LoadResultant::balanced(double tolerance) const {
 LoadResultant load_resultant(const PointCloud& cloud, const std::vector<double>& force) {
   const int d = cloud.dim;
   LoadResultant r;
-  r.about = centroid(cloud);
-  std::array<double, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  for (std::size_t i = 0; i < cloud.size(); ++i)
-    for (int a = 0; a < d; ++a) lo[a] = std::min(lo[a], cloud.x[i * d + a]), hi[a] = std::max(hi[a], cloud.x[i * d + a]);
-  for (int a = 0; a < d; ++a) r.length += (hi[a] - lo[a]) * (hi[a] - lo[a]);
-  r.length = std::sqrt(r.length);
+  const Extent e = extent(cloud);
+  r.about = e.about, r.length = e.length;
   if (force.empty()) return r;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     std::array<double, 3> x{0, 0, 0}, f{0, 0, 0};
@@ -149,20 +159,25 @@ std::vector<RigidBodyPin> rigid_body_pins(const PointCloud& cloud) {
   return pins;
 }
 
-std::vector<FreeRigidMotion> free_rigid_motions(const PointCloud& cloud, const Loading& loading) {
+std::vector<FreeRigidMotion> free_rigid_motions(const PointCloud& cloud, const Loading& loading,
+                                               const std::vector<std::uint8_t>& within) {
   const int d = cloud.dim;
   const int m = d * (d + 1) / 2;
-  const LoadResultant shape = load_resultant(cloud, {});
-  const double L = shape.length > 0.0 ? shape.length : 1.0;  // one particle: its turns are free
+  auto in = [&](std::int64_t dof) { return within.empty() || within[static_cast<std::size_t>(dof / d)]; };
+  // The rotations turn about the part's centroid, over its size (one particle: any length).
+  const Extent part = extent(cloud, within);
+  const std::array<double, 3>& about = part.about;
+  const double L = part.length > 0.0 ? part.length : 1.0;
   auto mode = [&](std::int64_t dof) {
     const std::vector<double> row =
-        rigid_mode_row(cloud.point(static_cast<std::size_t>(dof / d)), shape.about.data(), L, static_cast<int>(dof % d), d);
+        rigid_mode_row(cloud.point(static_cast<std::size_t>(dof / d)), about.data(), L, static_cast<int>(dof % d), d);
     return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(row.data(), m));
   };
   // G = A^T A, A's row k what constraint k reads of the rigid modes: u[fixed] / scale +
   // sum_c coef[c] u[coupled[c]] for a face-located one, u[fixed] for one at its particle.
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(m, m);
   for (std::size_t k = 0; k < loading.fixed.size(); ++k) {
+    if (!in(loading.fixed[k])) continue;
     Eigen::VectorXd a = mode(loading.fixed[k]);
     if (!loading.couplings.empty() && loading.couplings[k + 1] > loading.couplings[k]) {
       a /= loading.scale[k];
@@ -184,7 +199,7 @@ std::vector<FreeRigidMotion> free_rigid_motions(const PointCloud& cloud, const L
     for (int a = 0; a < d; ++a) f.translation[a] = v[a], t2 += v[a] * v[a];
     for (int a = 0; a < rotations; ++a) f.rotation[d == 2 ? 2 : a] = v[d + a] / L, w2 += v[d + a] * v[d + a];
     f.turns = w2 > 1e-12 * t2;
-    f.point = shape.about;
+    f.point = about;
     if (f.turns) {
       // The axis: the points whose velocity t + w x (x - c) is along w, x = c + w x t / |w|^2.
       const auto& w = f.rotation;

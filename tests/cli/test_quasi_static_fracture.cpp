@@ -2,7 +2,8 @@
 // breaking. A brittle bar under displacement control carries f_t times its section, fails
 // within one load step and carries nothing after it; without grips its ends break first, in
 // a cascade of balances within the step; the energy its break dissipates is what it stored;
-// a plastic bar breaks when its plastic stress reaches f_t; a cap on the balances stops the run, saying so; the Newton check solves a
+// a plastic bar breaks when its plastic stress reaches f_t; a cap on the balances stops the run, saying so; a step
+// that cannot balance because a crack freed a piece names it; the Newton check solves a
 // broken beam at its final damage state.
 #include <catch2/catch.hpp>
 
@@ -206,6 +207,26 @@ TEST_CASE("a load step whose bonds go on breaking past solver.max_rounds stops t
   CHECK(o.err.find("load step 118: bonds still breaking after 2 balances (solver.max_rounds)") != std::string::npos);
   const std::string summary = slurp(d.path / "out" / "summary.json");
   CHECK(summary.find("\"status\": \"not_converged\"") != std::string::npos);
+}
+
+TEST_CASE("a load step that cannot balance because a crack freed a piece names the piece", "[cli][fracture][load_path]") {
+  // The right end's y-point becomes a small downward traction on the top face (100 Pa, 0.1 N
+  // in all: the intact bar carries it in bending at under 1% of f_t). Held at first, so no
+  // warning; once the bar has parted, the piece under the right grip is held along x only and
+  // the traction drags it down: the balance cannot converge, and the run says which piece.
+  ScratchDir d;
+  const Outcome o = run_bar(d, "--set 'stages.0.boundary.3={region: top, traction: [0.0, -100.0]}' "
+                               "--set solver.max_iterations=20000").o;
+  INFO(o.out << o.err);
+  CHECK(o.exit_code == 1);
+  CHECK(o.err.find("rigid motion") == std::string::npos);  // the intact bar is held
+  CHECK(o.err.find("the balance did not converge in 20000 ADR iterations") != std::string::npos);
+  const auto at = o.out.find("perinom: note: in stage 'pull' the cracks have left a piece of ");
+  REQUIRE(at != std::string::npos);
+  const std::string note = o.out.substr(at, o.out.find('\n', at) - at);
+  CHECK(note.find("(of 2 piece(s), ") != std::string::npos);
+  CHECK(note.find("that its supports do not hold: it can move along (0, 1)") != std::string::npos);
+  CHECK(o.out.find("perinom: note: in stage 'pull' the cracks have left a piece", at + 1) == std::string::npos);  // one
 }
 
 TEST_CASE("solver.check: newton solves the broken notched beam again at its final damage state",

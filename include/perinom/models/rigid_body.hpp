@@ -48,7 +48,9 @@ struct FreeRigidMotion {
 /// The rigid motions of the cloud that the loading's constraints leave at rest (a
 /// face-located one read as it acts, at its face point): a basis of that space, empty when
 /// the supports hold the body. A static balance needs it empty, or loads without force or
-/// moment along what it holds.
-std::vector<FreeRigidMotion> free_rigid_motions(const PointCloud& cloud, const Loading& loading);
+/// moment along what it holds. `within` (one flag a particle; empty: the whole cloud) asks
+/// the same of a part, a piece a crack has cut off: the constraints on its particles only.
+std::vector<FreeRigidMotion> free_rigid_motions(const PointCloud& cloud, const Loading& loading,
+                                               const std::vector<std::uint8_t>& within = {});
 
 }  // namespace perinom
