@@ -110,6 +110,7 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     }
   }
   ThreadGovernor governor;
+  const std::vector<double> u_start = by_correction_ ? u : std::vector<double>{};
   while (rep.iterations < opt_.max_iterations) {
     governor.tick();
     // The seed's criterion (eq. 33) alone stops a solve that has barely moved; the
@@ -121,14 +122,20 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     if (first) {
       parallel_for(n, [&](std::size_t k) { v[k] = 0.5 * f[k] * inv_lambda[k]; });
     } else {
-      // Damping from the local diagonal stiffness (Rayleigh quotient over u).
-      auto quotient = parallel_sums<2>(n, [&](std::size_t k, double* acc) {
-        acc[1] += u[k] * u[k];
-        if (v[k] != 0.0) acc[0] += u[k] * u[k] * (-(f[k] - f_old[k]) * inv_lambda[k] / v[k]);
+      // Damping from the local diagonal stiffness (Rayleigh quotient over u; with
+      // by_correction_ also over the correction w = u - u_start, the smaller taken).
+      auto quotient = parallel_sums<4>(n, [&](std::size_t k, double* acc) {
+        const double w = by_correction_ ? u[k] - u_start[k] : 0.0;
+        acc[1] += u[k] * u[k], acc[3] += w * w;
+        if (v[k] != 0.0) {
+          const double stiffness = -(f[k] - f_old[k]) * inv_lambda[k] / v[k];
+          acc[0] += u[k] * u[k] * stiffness, acc[2] += w * w * stiffness;
+        }
       });
-      model_.sum_across_ranks(quotient.data(), 2);
-      const auto [num, den] = quotient;
+      model_.sum_across_ranks(quotient.data(), 4);
+      const double num = quotient[0], den = quotient[1];
       c = (num > 0.0 && den > 0.0) ? 2.0 * std::sqrt(num / den) : 0.0;
+      if (quotient[2] > 0.0 && quotient[3] > 0.0) c = std::min(c, 2.0 * std::sqrt(quotient[2] / quotient[3]));
       c = std::min(c, 1.999);
       const double keep = (2.0 - c) / (2.0 + c), push = 2.0 / (2.0 + c);
       parallel_for(n, [&](std::size_t k) { v[k] = keep * v[k] + push * f[k] * inv_lambda[k]; });

@@ -1,6 +1,7 @@
 #include "perinom/solvers/load_path.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <stdexcept>
 
@@ -110,6 +111,7 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
   const bool follow_density = changes && changes->stable_step && changes->row_sums && adr;
   double carried = resume ? resume->carried : 0.0;  // the largest reaction norm so far
   if (changes && adr) adr->set_load_floor(carried);
+  if (changes && adr && changes->dissipates) adr->damp_by_correction(true);
   if (follow_density) {
     changes->stable_step();
     adr->raise_density(changes->row_sums());
@@ -218,9 +220,11 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
           if (!ok) {
             // The state left is the last balanced one: this step's previous round, or the last step.
             u = r.rounds > 1 ? balanced : u_prev;
+            char residual[64];  // (std::to_string's fixed six decimals printed 1.8e-8 as 0.000000)
+            std::snprintf(residual, sizeof residual, "%.3e, target %.1e", balance.residual, opt.adr.tolerance);
             throw SolveError(where(stage, int(k), step) + ": the balance did not converge in " +
-                             std::to_string(balance.iterations) + " ADR iterations (residual " +
-                             std::to_string(balance.residual) + "); raise solver.max_iterations or loosen the tolerance");
+                             std::to_string(balance.iterations) + " ADR iterations (residual " + residual +
+                             "); raise solver.max_iterations or loosen the tolerance");
           }
           if (changes || plastic) balanced = u;
           if (opt.scheme == LoadPathScheme::lbc && plastic) {

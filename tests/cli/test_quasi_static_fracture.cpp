@@ -220,7 +220,9 @@ TEST_CASE("a load step that cannot balance because a crack freed a piece names t
   INFO(o.out << o.err);
   CHECK(o.exit_code == 1);
   CHECK(o.err.find("rigid motion") == std::string::npos);  // the intact bar is held
-  CHECK(o.err.find("the balance did not converge in 20000 ADR iterations") != std::string::npos);
+  CHECK(o.err.find("the balance did not converge in 20000 ADR iterations (residual ") != std::string::npos);
+  CHECK(o.err.find("(residual 0.000000") == std::string::npos);  // the residual in e-notation, with its target
+  CHECK(o.err.find(", target 1.0e-") != std::string::npos);
   const auto at = o.out.find("perinom: note: in stage 'pull' the cracks have left a piece of ");
   REQUIRE(at != std::string::npos);
   const std::string note = o.out.substr(at, o.out.find('\n', at) - at);

@@ -49,3 +49,59 @@ TEST_CASE("ADR stops cleanly on NaN, says why and keeps a finite state", "[solve
   CHECK_THAT(rep.failure, Catch::Contains("NaN"));
   for (double x : u) REQUIRE(std::isfinite(x));
 }
+
+TEST_CASE("damping by the correction relaxes a soft correction of a stiff state, where the quotient over u crawls",
+          "[solvers]") {
+  // A cantilever 100 x 10 mm held at its left face, stretched by 1 MPa, then bent by 1 kPa
+  // more on its right face: the second balance's correction (the bending) is far softer than
+  // the state it starts from (the stretch), as a softening crack's late in a load path is.
+  const std::string scene = R"(
+name: cantilever
+dimension: 2
+geometry: {box: {min: [0, 0], max: [0.1, 0.01]}, thickness: 0.01}
+discretization: {dx: 0.002, horizon: {ratio: 3.015}}
+material: {type: linear_elastic, E: 30.0e6, nu: 0.25, density: 2000, plane: stress}
+boundary:
+  - {region: left, fix: [x, y]}
+  - {region: right, traction: [1.0e6, 1.0e3]}
+)";
+  Problem p = build_problem(parse_scene(scene, "cantilever"));
+  auto& model = p.as<CorrespondenceModel>();
+  Loading stretch = p.loading;
+  for (std::size_t k = 1; k < stretch.force.size(); k += 2) stretch.force[k] = 0.0;
+  AdrOptions opt;
+  opt.tolerance = 1e-8;
+  opt.displacement_tolerance = 1e-10;
+  long first[2] = {0, 0}, second = 0;
+  std::vector<double> u;
+  for (int on = 1; on >= 0; --on) {
+    AdrRelaxation adr(model, opt);
+    adr.damp_by_correction(on == 1);
+    u.clear();
+    SolveReport rep;
+    REQUIRE(adr.balance(stretch, 1.0, u, rep, {}));
+    first[on] = rep.iterations;
+    if (on == 1) {
+      REQUIRE(adr.balance(p.loading, 1.0, u, rep, {}));
+      second = rep.iterations - first[1];
+      // The state is the body's: against the direct solve of the whole load.
+      const auto ref = test::direct_solve(model, p.loading);
+      double err = 0.0;
+      for (std::size_t k = 0; k < u.size(); ++k) err = std::max(err, std::abs(u[k] - ref[k]));
+      CHECK(err <= 1e-6 * test::max_abs(ref));
+    } else {
+      // The seed's damping, from the stretch it starts at, overdamps the bending: three times
+      // the correction's iterations are not enough.
+      AdrOptions budget = opt;
+      budget.max_iterations = first[0] + 3 * second;
+      AdrRelaxation slow(model, budget);
+      std::vector<double> v = u;
+      SolveReport again;
+      again.iterations = first[0];
+      CHECK_FALSE(slow.balance(p.loading, 1.0, v, again, {}));
+      WARN("the bending: " << second << " iterations damped by the correction; by the quotient over u the residual is "
+                           << again.residual << " after " << again.iterations - first[0]);
+    }
+  }
+  CHECK(first[1] == first[0]);  // from rest the correction is u: the same damping
+}

@@ -98,6 +98,12 @@ class AdrRelaxation {
   /// against the load it carried before (a load path with bond breaking passes its largest
   /// reaction norm so far). 0, the default, leaves the load norm alone.
   void set_load_floor(double norm) { load_floor_ = norm; }
+  /// With `on`, the damping is the smaller of the Rayleigh quotient's over u (the seed's) and
+  /// its over the balance's own correction, u minus u at its start: late in a softening
+  /// separation the correction's slow mode is far softer than the body's stretch, and the
+  /// quotient over u overdamped it (solve_load_path turns it on for softening bonds;
+  /// docs/theory.md, "Softening bonds").
+  void damp_by_correction(bool on) { by_correction_ = on; }
 
  private:
   /// Appends the supports' reactions at the last force evaluation to the history's last row.
@@ -110,6 +116,7 @@ class AdrRelaxation {
   std::vector<double> inv_lambda_, v_, f_, f_old_, fint_, last_good_;
   std::vector<double> first_inv_lambda_;  // before raise_density's first call
   double load_floor_ = 0.0;
+  bool by_correction_ = false;
   Checkpoints<AdrState> checkpoints_;
   bool resuming_ = false;
   double resume_r_ = 0.0, resume_du_ = 0.0;

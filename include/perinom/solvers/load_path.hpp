@@ -95,7 +95,9 @@ int steps_done(const LoadPathState& state, const std::vector<LoadStage>& stages)
 /// relative to at least the largest reaction norm the path has reached (a body broken apart
 /// carries none: AdrRelaxation::set_load_floor). The history gains the column broken_bonds
 /// (per step) and, for a model without history, external_work and dissipated_energy
-/// (energy_ledger.hpp); checkpoints hold the changes (save) and resume restores them.
+/// (energy_ledger.hpp); checkpoints hold the changes (save) and resume restores them. With
+/// changes that dissipate (softening bonds) ADR damps by the correction too
+/// (AdrRelaxation::damp_by_correction).
 SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
                             const LoadPathOptions& options, std::vector<double>& u,
                             Progress* progress = nullptr,
