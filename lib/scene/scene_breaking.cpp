@@ -33,8 +33,9 @@ SceneBreaking::SceneBreaking(Problem& p) : p_(&p) {
               [b] { return b->stable_time_step(); },
               [b] { return b->state(); },
               [b](const std::vector<double>& s) { b->restore(s); },
-              [b]() -> const std::vector<double>& { return b->row_sums(); }};
-  if (d->fracture_energy > 0.0) changes_.dissipates = true;
+              [b]() -> const std::vector<double>& { return b->row_sums(); },
+              d->fracture_energy > 0.0,  // softening bonds dissipate between breaks
+              [model]() -> const std::vector<ParticleId>& { return model->G().detached(); }};
 }
 
 void SceneBreaking::report(SolveReport& r, bool verlet) const {

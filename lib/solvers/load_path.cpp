@@ -1,5 +1,6 @@
 #include "perinom/solvers/load_path.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -29,6 +30,36 @@ void count_plastic(const Model& model, const std::vector<double>& xi_before,
   }
   model.sum_across_ranks(count, 2);  // (over ranks: each counts its own particles)
   r.yielding = std::size_t(count[0]), r.plastic = std::size_t(count[1]);
+}
+
+/// How a failed balance's residual (relative, `total`) splits between the particles the
+/// changes detached and the rest of the body, at the state the balance stopped in: "; of
+/// it, a on the N detached particles and b on the rest" (a^2 + b^2 = total^2), or nothing
+/// when none are detached. f is scratch of model.dofs().
+std::string residual_split(Model& model, const ModelChanges* changes, const Loading& loading, double s,
+                           const std::vector<double>& u, double total, std::vector<double>& f) {
+  if (!changes || !changes->detached) return {};
+  const std::vector<ParticleId>& loose = changes->detached();
+  if (loose.empty()) return {};
+  model.follow_loads(loading, s);
+  model.internal_force(u.data(), f.data());
+  for (std::size_t k = 0; k < f.size(); ++k) f[k] = (loading.has_force() ? loading.force_at(s, k) : 0.0) - f[k];
+  loading.reduce(f.data());  // the free dofs' residual, as ADR measures it
+  const int d = model.dofs_per_particle();
+  double sums[2] = {0.0, 0.0};  // on the detached particles, on the rest
+  for (const double r : f) sums[1] += r * r;
+  for (const ParticleId i : loose)
+    for (int a = 0; a < d; ++a) {
+      const double r = f[std::size_t(i) * d + a];
+      sums[0] += r * r, sums[1] -= r * r;
+    }
+  model.sum_across_ranks(sums, 2);
+  const double all = sums[0] + std::max(sums[1], 0.0);
+  if (!(all > 0.0)) return {};
+  char text[160];
+  std::snprintf(text, sizeof text, "; of it, %.3e on the %zu detached particles and %.3e on the rest of the body",
+                total * std::sqrt(sums[0] / all), loose.size(), total * std::sqrt(std::max(sums[1], 0.0) / all));
+  return text;
 }
 
 std::string where(const LoadStage& stage, int k, int step) {
@@ -218,12 +249,13 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
           r.iterations = balance.iterations;
           r.residual = balance.residual;
           if (!ok) {
-            // The state left is the last balanced one: this step's previous round, or the last step.
-            u = r.rounds > 1 ? balanced : u_prev;
             char residual[64];  // (std::to_string's fixed six decimals printed 1.8e-8 as 0.000000)
             std::snprintf(residual, sizeof residual, "%.3e, target %.1e", balance.residual, opt.adr.tolerance);
+            const std::string split = residual_split(model, changes, stage.loading, r.load_factor, u, balance.residual, fint);
+            // The state left is the last balanced one: this step's previous round, or the last step.
+            u = r.rounds > 1 ? balanced : u_prev;
             throw SolveError(where(stage, int(k), step) + ": the balance did not converge in " +
-                             std::to_string(balance.iterations) + " ADR iterations (residual " + residual +
+                             std::to_string(balance.iterations) + " ADR iterations (residual " + residual + split +
                              "); raise solver.max_iterations or loosen the tolerance");
           }
           if (changes || plastic) balanced = u;

@@ -7,6 +7,8 @@
 #include <functional>
 #include <vector>
 
+#include "perinom/core/types.hpp"
+
 namespace perinom {
 
 /// What ModelChanges::apply made: how many changes, and the strain energy they released.
@@ -47,6 +49,10 @@ struct ModelChanges {
   /// The model dissipates energy between changes too (softening bonds, whose state find()
   /// commits): a load path's energy account (EnergyLedger) recounts after every step.
   bool dissipates = false;
+  /// Optional: the particles the changes have detached so far (sorted; held by nothing but
+  /// what the changes left, e.g. softening bonds). A load step that fails to balance says
+  /// how much of its residual is theirs and how much the rest of the body's.
+  std::function<const std::vector<ParticleId>&()> detached;
 };
 
 }  // namespace perinom
