@@ -86,7 +86,7 @@ double CohesiveBonds::envelope(const Bond& b, double kappa) const {
 }
 
 double CohesiveBonds::force(const Bond& b, double eta) const {
-  if (eta <= 0.0) return 0.0;
+  if (eta <= 0.0) return b.F0 * eta / b.eta_e;  // closed: the faces in contact
   if (eta >= b.kappa) return envelope(b, eta);
   return envelope(b, b.kappa) * eta / b.kappa;  // unloading to the origin
 }
@@ -107,7 +107,7 @@ double CohesiveBonds::energy(const double* u) const {
   double w = 0.0;
   for (const Bond& b : bonds_) {
     const double eta = opening(b, u);
-    if (eta > 0.0) w += 0.5 * force(b, eta) * eta;
+    w += 0.5 * force(b, eta) * eta;  // (closed: the contact's, elastic)
   }
   return w;
 }
@@ -117,8 +117,8 @@ void CohesiveBonds::prepare_tangent(const double* u) {
   for (std::size_t k = 0; k < bonds_.size(); ++k) {
     const Bond& b = bonds_[k];
     const double eta = opening(b, u);
-    if (eta <= 0.0) continue;
-    if (eta < b.kappa) slope_[k] = envelope(b, b.kappa) / b.kappa;  // the secant
+    if (eta <= 0.0) slope_[k] = b.F0 / b.eta_e;  // closed: the faces in contact
+    else if (eta < b.kappa) slope_[k] = envelope(b, b.kappa) / b.kappa;  // the secant
     else if (eta < b.eta_e) slope_[k] = b.F0 / b.eta_e;
     else if (eta < eta_u_) slope_[k] = -b.F0 / (eta_u_ - b.eta_e);
   }

@@ -85,9 +85,13 @@ TEST_CASE("with fracture_energy a bar cracking in a band dissipates G_f times it
   // Only the bonds within a band 13 mm wide at mid-length may break (every bond crossing its
   // middle does), G_f = 50 N/m: the pulled end goes 0.3 mm in 600 steps, past eta_u = pi G_f /
   // (2 f_t) = 79 um of opening. The energy account (load_steps.csv dissipated_energy, W - E)
-  // at the end against G_f A = 0.01 J: measured 1.032 (the lattice crossing the law's scaling
+  // at the end against G_f A = 0.01 J: measured 1.022 (the lattice crossing the law's scaling
   // assumes, 1.007 by a count, the brittle energy released when bonds break, and the
-  // trapezoid of the softening steps). The peak: measured 194 N against f_t A = 200 N.
+  // trapezoid of the softening steps). The peak: the band breaks at 195 N (load step 8), then
+  // its softening bonds carry up to 210.8 N (step 14) against f_t A = 200 N, 1.054 f_t A
+  // (1.015 at dx = 1 mm, docs/theory.md). Before closed bonds pushed back (2026-12-05) the
+  // band's detached particles collapsed sideways and the peak was the break's 194 N (0.77
+  // f_t A at dx = 1 mm).
   ScratchDir d;
   const std::string band = " --set damage.fracture_energy=50 --set 'damage.no_fail.0.region.box.max=[0.0435, 1.0]'"
                            " --set 'damage.no_fail.1.region.box.min=[0.0565, -1.0]' --set stages.0.steps=600"
@@ -97,8 +101,7 @@ TEST_CASE("with fracture_energy a bar cracking in a band dissipates G_f times it
   REQUIRE(b.o.exit_code == 0);
   REQUIRE(b.R.size() == 600);
   const double carried = 1.0e6 * 0.02 * 0.01, G_f_A = 50.0 * 0.02 * 0.01;
-  CHECK(b.R[b.peak] <= carried);
-  CHECK(b.R[b.peak] >= 0.95 * carried);
+  CHECK(b.R[b.peak] == Approx(carried).epsilon(0.06));
   // It softens: at 40 um (ten times the displacement at f_t A) it carries less than at the
   // peak, and more than half of it (the plain criterion drops to zero within one step).
   CHECK(b.peak < 79);
@@ -235,26 +238,27 @@ TEST_CASE("a load step that cannot balance because a crack freed a piece names t
 
 TEST_CASE("a softening load step that fails to balance says how much of its residual is on the detached particles",
           "[cli][fracture][load_path]") {
-  // The bar with softening bonds (G_f 50 N/m) and a budget of 3,000 ADR iterations a balance:
-  // the step in which its band breaks detaches the band's particles, held by their softening
-  // bonds only, and that balance runs out of iterations with the residual almost all theirs
-  // (measured 3.894e-5 of 3.894e-5 on 364 detached particles, 5.6e-9 on the rest; with the
-  // default budget it balances). The two shares are the residual's, split by dofs.
+  // The bar with softening bonds (G_f 50 N/m) and a budget of 450 ADR iterations a balance
+  // (the steps before the break take at most 402): the step in which its band breaks
+  // detaches the band's particles, held by their softening bonds only, and its second
+  // balance runs out of iterations with most of the residual theirs (measured 1.342e-7 of
+  // 1.345e-7 on 364 detached particles, 9.4e-9 on the rest; with the default budget the bar
+  // runs to the end). The two shares are the residual's, split by dofs.
   ScratchDir d;
-  const Outcome o = run_bar(d, "--set damage.fracture_energy=50 --set solver.max_iterations=3000").o;
+  const Outcome o = run_bar(d, "--set damage.fracture_energy=50 --set solver.max_iterations=450").o;
   INFO(o.out << o.err);
   CHECK(o.exit_code == 1);
-  const auto at = o.err.find("the balance did not converge in 3000 ADR iterations (residual ");
+  const auto at = o.err.find("the balance did not converge in 450 ADR iterations (residual ");
   REQUIRE(at != std::string::npos);
   double total = 0.0, loose = 0.0, rest = 0.0;
   unsigned long count = 0;
   REQUIRE(std::sscanf(o.err.c_str() + at,
-                      "the balance did not converge in 3000 ADR iterations (residual %lf, target %*s of it, %lf on the %lu "
+                      "the balance did not converge in 450 ADR iterations (residual %lf, target %*s of it, %lf on the %lu "
                       "detached particles and %lf on the rest of the body",
                       &total, &loose, &count, &rest) == 4);
   CHECK(count > 0);
   CHECK(std::sqrt(loose * loose + rest * rest) == Approx(total).epsilon(2e-3));  // (printed to 4 digits)
-  CHECK(loose > 100.0 * rest);
+  CHECK(loose > rest);
 }
 
 TEST_CASE("solver.check: newton solves the broken notched beam again at its final damage state",

@@ -43,7 +43,7 @@ struct Lattice {
 
 }  // namespace
 
-TEST_CASE("a softening bond's force is its energy's derivative while elastic, and unloads to the origin",
+TEST_CASE("a softening bond's force is its energy's derivative while elastic, closed pushes back, and unloads to the origin",
           "[models][cohesive]") {
   for (const int d : {2, 3}) {
     INFO("dim " << d);
@@ -65,6 +65,12 @@ TEST_CASE("a softening bond's force is its energy's derivative while elastic, an
     }
     CHECK(largest > 0.0);
     CHECK(worst <= 1e-5 * largest);
+    // Closed, a bond pushes back as it pulled (the faces in contact): on the rising branch
+    // the force at -u is the opposite of that at u (it was zero for the closed ones before).
+    std::vector<double> minus = u, f_minus(u.size(), 0.0);
+    for (double& x : minus) x = -x;
+    bonds.add_force(minus.data(), f_minus.data());
+    for (std::size_t k = 0; k < f.size(); ++k) CHECK(f_minus[k] == Approx(-f[k]).margin(1e-12 * largest));
     // Past the peak, committed: at half the state every bond carries half its force.
     std::vector<double> big = u;
     for (double& x : big) x *= 4000.0;  // openings up to ~2e-5 m: softening, below eta_u

@@ -5,8 +5,13 @@
 /// a bilinear function of its opening eta = e . (u_j - u_i) (small strain):
 ///   F(kappa) rises as F0 kappa / eta_e up to eta_e = |xi| f_t / E (the bond's elongation in a
 ///   body at f_t), then falls linearly to zero at eta_u; kappa is the largest opening so far,
-///   and below it the bond unloads to the origin (secant); a closed bond (eta <= 0) carries
-///   nothing. The force on j is +V_i V_j F e, on i its opposite.
+///   and below it the bond unloads to the origin (secant); a closed bond (eta <= 0) pushes
+///   back with the rising branch's stiffness, F = F0 eta / eta_e (the crack's faces in
+///   contact, elastic: its energy is stored, not dissipated). Without that a particle the
+///   breaks detach has nothing against closing: the 2-D bar's band collapsed sideways
+///   (bonds closed by 10 eta_u, nearly a spacing), its peak fell to 0.77 f_t A and its
+///   balances stalled (docs/theory.md, "Softening bonds"). The force on j is +V_i V_j F e,
+///   on i its opposite.
 /// The scaling is a crack-band one by the family (the bond-based energy argument of Silling
 /// and Askari 2005, with the family's own sums in place of the continuum integrals): with
 /// S_i = sum_j V_j |xi_ij| over i's live family, a flat crack of normal n through bulk is
@@ -75,7 +80,7 @@ class CohesiveBonds {
   void add_row_sums(const std::vector<ParticleId>* rows, double* sums) const;
 
   /// dF/deta of every bond at u (V_i V_j included) for tangent_row: the rising or softening
-  /// branch's slope where eta >= kappa, the secant F(kappa) / kappa below it, 0 when closed.
+  /// branch's slope where eta >= kappa, the secant F(kappa) / kappa below it, F0 / eta_e when closed.
   void prepare_tangent(const double* u);
   /// Whether particle i has a softening bond.
   bool touches(ParticleId i) const;
