@@ -89,7 +89,7 @@ TEST_CASE("with fracture_energy a bar cracking in a band dissipates G_f times it
   // assumes, 1.007 by a count, the brittle energy released when bonds break, and the
   // trapezoid of the softening steps). The peak: the band breaks at 195 N (load step 8), then
   // its softening bonds carry up to 210.8 N (step 14) against f_t A = 200 N, 1.054 f_t A
-  // (1.015 at dx = 1 mm, docs/theory.md). Before closed bonds pushed back (2026-12-05) the
+  // (1.025 at dx = 1 mm, docs/theory.md). Before closed bonds pushed back (2026-12-05) the
   // band's detached particles collapsed sideways and the peak was the break's 194 N (0.77
   // f_t A at dx = 1 mm).
   ScratchDir d;
@@ -101,7 +101,8 @@ TEST_CASE("with fracture_energy a bar cracking in a band dissipates G_f times it
   REQUIRE(b.o.exit_code == 0);
   REQUIRE(b.R.size() == 600);
   const double carried = 1.0e6 * 0.02 * 0.01, G_f_A = 50.0 * 0.02 * 0.01;
-  CHECK(b.R[b.peak] == Approx(carried).epsilon(0.06));
+  CHECK(b.R[b.peak] >= 0.95 * carried);
+  CHECK(b.R[b.peak] <= 1.06 * carried);  // (at most f_t A while the band collapsed: see above)
   // It softens: at 40 um (ten times the displacement at f_t A) it carries less than at the
   // peak, and more than half of it (the plain criterion drops to zero within one step).
   CHECK(b.peak < 79);
