@@ -16,29 +16,13 @@
 #include <sstream>
 
 #include "../support/cli.hpp"
+#include "../support/step_table.hpp"
 
 using namespace cli_test;
 
 namespace {
 
 const std::string bar = "'" PERINOM_SOURCE_DIR "/examples/brittle_bar.yaml'";
-
-/// load_steps.csv as columns by name.
-std::map<std::string, std::vector<double>> columns(const std::string& csv) {
-  std::istringstream in(csv);
-  std::string line, name;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  std::istringstream head(line);
-  while (std::getline(head, name, ',')) names.push_back(name);
-  std::map<std::string, std::vector<double>> out;
-  while (std::getline(in, line)) {
-    std::istringstream row(line);
-    std::string cell;
-    for (std::size_t c = 0; c < names.size() && std::getline(row, cell, ','); ++c) out[names[c]].push_back(std::stod(cell));
-  }
-  return out;
-}
 
 /// The bar run with `extra` options: its outcome and, when it ran through, its step table,
 /// with the pulled end's reaction, the broken bonds and the peak step at hand.
