@@ -254,9 +254,14 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
             const std::string split = residual_split(model, changes, stage.loading, r.load_factor, u, balance.residual, fint);
             // The state left is the last balanced one: this step's previous round, or the last step.
             u = r.rounds > 1 ? balanced : u_prev;
+            // Under force control a cracking body has no balanced state once the force passes what it carries.
+            const bool forced = changes && stage.loading.has_force() && stage.loading.force_norm(r.load_factor) > 0.0;
             throw SolveError(where(stage, int(k), step) + ": the balance did not converge in " +
                              std::to_string(balance.iterations) + " ADR iterations (residual " + residual + split +
-                             "); raise solver.max_iterations or loosen the tolerance");
+                             "); raise solver.max_iterations or loosen the tolerance" +
+                             (forced ? "; or the stage's forces are more than the cracking body can carry: to follow "
+                                       "its path past the peak, move the loaded region by a displacement"
+                                     : ""));
           }
           if (changes || plastic) balanced = u;
           if (opt.scheme == LoadPathScheme::lbc && plastic) {

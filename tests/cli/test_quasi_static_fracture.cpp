@@ -214,6 +214,9 @@ TEST_CASE("a load step that cannot balance because a crack freed a piece names t
   CHECK(o.err.find("the balance did not converge in 20000 ADR iterations (residual ") != std::string::npos);
   CHECK(o.err.find("(residual 0.000000") == std::string::npos);  // the residual in e-notation, with its target
   CHECK(o.err.find(", target 1.0e-") != std::string::npos);
+  // A force loads the cracking bar: the message says what to do when it is past the peak.
+  CHECK(o.err.find("; or the stage's forces are more than the cracking body can carry: to follow its path past the "
+                   "peak, move the loaded region by a displacement") != std::string::npos);
   // The residual split between the particles the break detached and the rest of the body
   // (measured 7.516e-5 on 364 detached particles and 1.130e-5 on the rest, of 7.600e-5):
   // the two shares are the residual's, split by dofs.
