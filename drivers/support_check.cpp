@@ -8,6 +8,7 @@
 #include "perinom/fracture/pieces.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/models/rigid_body.hpp"
+#include "perinom/models/thin_plate.hpp"
 
 namespace perinom::cli {
 namespace {
@@ -52,25 +53,30 @@ std::string describe(const std::vector<FreeRigidMotion>& free, int d) {
   return text;
 }
 
-bool check(const PointCloud& cloud, const Loading& loading, const std::string& where) {
-  const std::vector<FreeRigidMotion> free = free_rigid_motions(cloud, loading);
+/// Warns of the free motions of the body (a plate's when `plate` is set), saying where.
+bool check(const PointCloud& cloud, const ThinPlateModel* plate, const Loading& loading, const std::string& where) {
+  const std::vector<FreeRigidMotion> free =
+      plate ? free_plate_motions(plate->plate(), loading) : free_rigid_motions(cloud, loading);
   if (free.empty()) return false;
-  const std::string text = describe(free, cloud.dim);
+  const std::string text = describe(free, plate ? 3 : cloud.dim);
   std::fprintf(stderr,
-               "perinom: warning: %s: the supports leave the body %zu rigid motion(s) free: it can %s. A static "
-               "balance needs every rigid motion held: a load along one, or a crack that frees a piece, will not "
-               "balance (hold more components, or use constraints: rigid_body for a body without supports)\n",
-               where.c_str(), free.size(), text.c_str());
+               "perinom: warning: %s: the supports leave the %s %zu rigid motion(s) free: it can %s. A static "
+               "balance needs every rigid motion held: a load along one%s will not balance (%s)\n",
+               where.c_str(), plate ? "plate" : "body", free.size(), text.c_str(),
+               plate ? "" : ", or a crack that frees a piece,",
+               plate ? "support more edges, or clamp one"
+                     : "hold more components, or use constraints: rigid_body for a body without supports");
   return true;
 }
 
 }  // namespace
 
 bool warn_if_free(const Problem& p) {
-  if (p.physics().dofs_per_particle() != p.cloud.dim) return false;
-  if (p.stages.empty()) return check(p.cloud, p.loading, "boundary");
+  const auto* plate = dynamic_cast<const ThinPlateModel*>(p.model.get());
+  if (!plate && p.physics().dofs_per_particle() != p.cloud.dim) return false;
+  if (p.stages.empty()) return check(p.cloud, plate, p.loading, "boundary");
   bool any = false;
-  for (const LoadStage& st : p.stages) any = check(p.cloud, st.loading, "stage '" + st.name + "'") || any;
+  for (const LoadStage& st : p.stages) any = check(p.cloud, plate, st.loading, "stage '" + st.name + "'") || any;
   return any;
 }
 

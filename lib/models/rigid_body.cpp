@@ -159,6 +159,53 @@ std::vector<RigidBodyPin> rigid_body_pins(const PointCloud& cloud) {
   return pins;
 }
 
+namespace {
+
+/// The combinations of m modes that every row reads as zero: a basis, from the Gram matrix
+/// of the rows (each the m modes' values a constraint reads). A held combination moves some
+/// row by a lever over the body's size; rounding leaves a free one near 1e-16 of the largest
+/// eigenvalue.
+std::vector<Eigen::VectorXd> unread(int m, const std::vector<Eigen::VectorXd>& rows) {
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(m, m);
+  for (const Eigen::VectorXd& a : rows) G += a * a.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(G);
+  const double floor = 1e-10 * std::max(1.0, eig.eigenvalues().maxCoeff());
+  std::vector<Eigen::VectorXd> out;
+  for (int e = 0; e < m; ++e)
+    if (eig.eigenvalues()[e] <= floor) out.push_back(eig.eigenvectors().col(e));
+  return out;
+}
+
+/// What the loading's constraint k reads of the modes mode(dof): u[fixed] / scale + sum_c
+/// coef[c] u[coupled[c]] for a face-located one, u[fixed] for one at its particle.
+template <class Mode>
+Eigen::VectorXd constraint_row(const Loading& loading, std::size_t k, const Mode& mode) {
+  Eigen::VectorXd a = mode(loading.fixed[k]);
+  if (!loading.couplings.empty() && loading.couplings[k + 1] > loading.couplings[k]) {
+    a /= loading.scale[k];
+    for (Offset c = loading.couplings[k]; c < loading.couplings[k + 1]; ++c) a += loading.coef[c] * mode(loading.coupled[c]);
+  }
+  return a;
+}
+
+/// A free motion t + w x (x - c) from its translation and rotation: a turn when w is not
+/// negligible, about the axis through the points whose velocity is along w, x = c + w x t / |w|^2.
+FreeRigidMotion motion(const std::array<double, 3>& t, const std::array<double, 3>& w, const std::array<double, 3>& c, int d) {
+  FreeRigidMotion f;
+  f.translation = t, f.rotation = w, f.point = c;
+  const double t2 = t[0] * t[0] + t[1] * t[1] + t[2] * t[2], ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+  f.turns = ww > 1e-12 * t2;
+  if (f.turns) {
+    f.point[0] += (w[1] * t[2] - w[2] * t[1]) / ww;
+    f.point[1] += (w[2] * t[0] - w[0] * t[2]) / ww;
+    f.point[2] += (w[0] * t[1] - w[1] * t[0]) / ww;
+    if (d == 2) f.point[2] = 0.0;
+  }
+  return f;
+}
+
+}  // namespace
+
 std::vector<FreeRigidMotion> free_rigid_motions(const PointCloud& cloud, const Loading& loading,
                                                const std::vector<std::uint8_t>& within) {
   const int d = cloud.dim;
@@ -166,52 +213,46 @@ std::vector<FreeRigidMotion> free_rigid_motions(const PointCloud& cloud, const L
   auto in = [&](std::int64_t dof) { return within.empty() || within[static_cast<std::size_t>(dof / d)]; };
   // The rotations turn about the part's centroid, over its size (one particle: any length).
   const Extent part = extent(cloud, within);
-  const std::array<double, 3>& about = part.about;
   const double L = part.length > 0.0 ? part.length : 1.0;
   auto mode = [&](std::int64_t dof) {
     const std::vector<double> row =
-        rigid_mode_row(cloud.point(static_cast<std::size_t>(dof / d)), about.data(), L, static_cast<int>(dof % d), d);
+        rigid_mode_row(cloud.point(static_cast<std::size_t>(dof / d)), part.about.data(), L, static_cast<int>(dof % d), d);
     return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(row.data(), m));
   };
-  // G = A^T A, A's row k what constraint k reads of the rigid modes: u[fixed] / scale +
-  // sum_c coef[c] u[coupled[c]] for a face-located one, u[fixed] for one at its particle.
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(m, m);
-  for (std::size_t k = 0; k < loading.fixed.size(); ++k) {
-    if (!in(loading.fixed[k])) continue;
-    Eigen::VectorXd a = mode(loading.fixed[k]);
-    if (!loading.couplings.empty() && loading.couplings[k + 1] > loading.couplings[k]) {
-      a /= loading.scale[k];
-      for (Offset c = loading.couplings[k]; c < loading.couplings[k + 1]; ++c) a += loading.coef[c] * mode(loading.coupled[c]);
-    }
-    G += a * a.transpose();
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(G);
-  // A held mode moves some held dof by at least a particle's lever over L; rounding leaves
-  // a free one near 1e-16 of the largest eigenvalue.
-  const double floor = 1e-10 * std::max(1.0, eig.eigenvalues().maxCoeff());
+  std::vector<Eigen::VectorXd> rows;
+  for (std::size_t k = 0; k < loading.fixed.size(); ++k)
+    if (in(loading.fixed[k])) rows.push_back(constraint_row(loading, k, mode));
   std::vector<FreeRigidMotion> out;
-  for (int e = 0; e < m; ++e) {
-    if (eig.eigenvalues()[e] > floor) continue;
-    const Eigen::VectorXd v = eig.eigenvectors().col(e);
-    FreeRigidMotion f;
-    const int rotations = d == 2 ? 1 : 3;
-    double t2 = 0.0, w2 = 0.0;
-    for (int a = 0; a < d; ++a) f.translation[a] = v[a], t2 += v[a] * v[a];
-    for (int a = 0; a < rotations; ++a) f.rotation[d == 2 ? 2 : a] = v[d + a] / L, w2 += v[d + a] * v[d + a];
-    f.turns = w2 > 1e-12 * t2;
-    f.point = about;
-    if (f.turns) {
-      // The axis: the points whose velocity t + w x (x - c) is along w, x = c + w x t / |w|^2.
-      const auto& w = f.rotation;
-      const auto& t = f.translation;
-      const double ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
-      f.point[0] += (w[1] * t[2] - w[2] * t[1]) / ww;
-      f.point[1] += (w[2] * t[0] - w[0] * t[2]) / ww;
-      f.point[2] += (w[0] * t[1] - w[1] * t[0]) / ww;
-      if (d == 2) f.point[2] = 0.0;
-    }
-    out.push_back(f);
+  for (const Eigen::VectorXd& v : unread(m, rows)) {
+    std::array<double, 3> t{0, 0, 0}, w{0, 0, 0};
+    for (int a = 0; a < d; ++a) t[a] = v[a];
+    for (int a = 0; a < (d == 2 ? 1 : 3); ++a) w[d == 2 ? 2 : a] = v[d + a] / L;
+    out.push_back(motion(t, w, part.about, d));
   }
+  return out;
+}
+
+std::vector<FreeRigidMotion> free_plate_motions(const PlateCloud& plate, const Loading& loading) {
+  // The plate's rigid deflections w = t + w_x (y - c_y) - w_y (x - c_x), the z velocity of a
+  // motion t e_z + w x (x - c) with w in the plane; modes (1, (y - c_y) / L, -(x - c_x) / L).
+  PointCloud nodes = plate.cloud;
+  nodes.x.resize(2 * plate.physical), nodes.volume.resize(plate.physical);
+  const Extent part = extent(nodes);
+  const double L = part.length > 0.0 ? part.length : 1.0;
+  auto at = [&](std::size_t p) {
+    const double* x = &plate.cloud.x[2 * p];
+    return Eigen::Vector3d(1.0, (x[1] - part.about[1]) / L, -(x[0] - part.about[0]) / L);
+  };
+  auto mode = [&](std::int64_t dof) { return Eigen::VectorXd(at(static_cast<std::size_t>(dof))); };
+  std::vector<Eigen::VectorXd> rows;
+  for (std::size_t k = 0; k < loading.fixed.size(); ++k) rows.push_back(constraint_row(loading, k, mode));
+  // A ghost holds w_ghost = sign w_image: a mode the mirror does not continue (a clamped
+  // edge's turn about itself) is held.
+  for (std::size_t g = 0; g < plate.image.size(); ++g)
+    rows.push_back(at(plate.physical + g) - plate.sign[g] * at(static_cast<std::size_t>(plate.image[g])));
+  std::vector<FreeRigidMotion> out;
+  for (const Eigen::VectorXd& v : unread(3, rows))
+    out.push_back(motion({0.0, 0.0, v[0]}, {v[1] / L, v[2] / L, 0.0}, {part.about[0], part.about[1], 0.0}, 3));
   return out;
 }
 

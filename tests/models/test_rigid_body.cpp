@@ -189,3 +189,36 @@ TEST_CASE("the free rigid motions of supports: none when held, the one left when
     CHECK(free_rigid_motions(c, l).empty());
   }
 }
+
+TEST_CASE("the free rigid deflections of a plate: a hinge line turns, a clamp or two edges hold",
+          "[models][rigid_body]") {
+  // A 0.4 x 0.2 m plate (dx 0.02 m, two ghost layers) with w = 0 on its supported edges' nodes,
+  // as plate_problem.cpp sets them, and the ghosts' mirrors (a clamped edge's symmetric).
+  BoxGeometry box;
+  box.dim = 2;
+  box.max = {0.4, 0.2, 0.0};
+  const EdgeSupport o = EdgeSupport::free, s = EdgeSupport::simply_supported, c = EdgeSupport::clamped;
+  auto free = [&](const PlateEdges& edges) {
+    const PlateCloud plate = make_plate_cloud(box, 0.02, edges, 2);
+    Loading l;
+    for (int e = 0; e < 4; ++e)
+      if (edges[e] != EdgeSupport::free)
+        for (const ParticleId i : plate.edge_nodes(e)) l.fix(i, 0.0);
+    return free_plate_motions(plate, l);
+  };
+  CHECK(free({o, o, o, o}).size() == 3);  // a translation along z and two turns
+  const auto hinge = free({s, o, o, o});  // the edge x = 0 simply supported: the turn about it
+  REQUIRE(hinge.size() == 1);
+  CHECK(hinge[0].turns);
+  CHECK(std::abs(hinge[0].rotation[0]) < 1e-9 * std::abs(hinge[0].rotation[1]));
+  CHECK(hinge[0].rotation[2] == 0.0);
+  CHECK(hinge[0].point[0] == Approx(0.0).margin(1e-12));
+  const auto bottom = free({o, o, s, o});  // y = 0: the turn about the x axis
+  REQUIRE(bottom.size() == 1);
+  CHECK(std::abs(bottom[0].rotation[1]) < 1e-9 * std::abs(bottom[0].rotation[0]));
+  CHECK(bottom[0].point[1] == Approx(0.0).margin(1e-12));
+  CHECK(free({c, o, o, o}).empty());  // a cantilever plate: the clamp's mirror holds the turn
+  CHECK(free({s, s, o, o}).empty());  // two opposite edges
+  CHECK(free({s, o, s, o}).empty());  // two adjacent edges
+  CHECK(free({s, s, s, s}).empty());
+}

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "perinom/core/types.hpp"
+#include "perinom/geometry/plate_cloud.hpp"
 #include "perinom/geometry/point_cloud.hpp"
 #include "perinom/models/loading.hpp"
 
@@ -52,5 +53,11 @@ struct FreeRigidMotion {
 /// the same of a part, a piece a crack has cut off: the constraints on its particles only.
 std::vector<FreeRigidMotion> free_rigid_motions(const PointCloud& cloud, const Loading& loading,
                                                const std::vector<std::uint8_t>& within = {});
+
+/// The same for a thin plate (deflection w along z, one unknown a node): its rigid
+/// deflections are a translation along z and turns about axes in its plane (returned as 3-D
+/// motions, the plate in z = 0), held by the loading's w = 0 and by the supported edges'
+/// ghosts (a clamped edge's mirror also holds the turn about that edge).
+std::vector<FreeRigidMotion> free_plate_motions(const PlateCloud& plate, const Loading& loading);
 
 }  // namespace perinom
