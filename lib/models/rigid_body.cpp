@@ -188,13 +188,15 @@ Eigen::VectorXd constraint_row(const Loading& loading, std::size_t k, const Mode
   return a;
 }
 
-/// A free motion t + w x (x - c) from its translation and rotation: a turn when w is not
-/// negligible, about the axis through the points whose velocity is along w, x = c + w x t / |w|^2.
-FreeRigidMotion motion(const std::array<double, 3>& t, const std::array<double, 3>& w, const std::array<double, 3>& c, int d) {
+/// A free motion t + w x (x - c) from its translation and rotation: a turn when w's lever
+/// over the body's size L is not negligible against t, about the axis through the points whose
+/// velocity is along w, x = c + w x t / |w|^2.
+FreeRigidMotion motion(const std::array<double, 3>& t, const std::array<double, 3>& w, const std::array<double, 3>& c,
+                       double L, int d) {
   FreeRigidMotion f;
   f.translation = t, f.rotation = w, f.point = c;
   const double t2 = t[0] * t[0] + t[1] * t[1] + t[2] * t[2], ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
-  f.turns = ww > 1e-12 * t2;
+  f.turns = ww * L * L > 1e-12 * t2;
   if (f.turns) {
     f.point[0] += (w[1] * t[2] - w[2] * t[1]) / ww;
     f.point[1] += (w[2] * t[0] - w[0] * t[2]) / ww;
@@ -227,7 +229,7 @@ std::vector<FreeRigidMotion> free_rigid_motions(const PointCloud& cloud, const L
     std::array<double, 3> t{0, 0, 0}, w{0, 0, 0};
     for (int a = 0; a < d; ++a) t[a] = v[a];
     for (int a = 0; a < (d == 2 ? 1 : 3); ++a) w[d == 2 ? 2 : a] = v[d + a] / L;
-    out.push_back(motion(t, w, part.about, d));
+    out.push_back(motion(t, w, part.about, L, d));
   }
   return out;
 }
@@ -252,7 +254,7 @@ std::vector<FreeRigidMotion> free_plate_motions(const PlateCloud& plate, const L
     rows.push_back(at(plate.physical + g) - plate.sign[g] * at(static_cast<std::size_t>(plate.image[g])));
   std::vector<FreeRigidMotion> out;
   for (const Eigen::VectorXd& v : unread(3, rows))
-    out.push_back(motion({0.0, 0.0, v[0]}, {v[1] / L, v[2] / L, 0.0}, {part.about[0], part.about[1], 0.0}, 3));
+    out.push_back(motion({0.0, 0.0, v[0]}, {v[1] / L, v[2] / L, 0.0}, {part.about[0], part.about[1], 0.0}, L, 3));
   return out;
 }
 
