@@ -204,10 +204,25 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
   } catch (const YAML::Exception& e) {
     throw InputError("--set " + path + ": the value is not valid YAML (" + e.msg + ")");
   }
+  // Error messages name list items as boundary[1].pressure; --set takes that form too.
+  std::string dotted;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (path[i] != '[') {
+      dotted += path[i];
+      continue;
+    }
+    const auto close = path.find(']', i);
+    const std::string digits = close == std::string::npos ? "" : path.substr(i + 1, close - i - 1);
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos ||
+        (close + 1 < path.size() && path[close + 1] != '.'))
+      throw InputError("--set " + path + ": a list item is named by its index, as boundary.1.pressure or boundary[1].pressure");
+    dotted += "." + digits;
+    i = close;
+  }
   std::vector<std::string> parts;
   for (std::size_t start = 0;;) {
-    const auto dot = path.find('.', start);
-    parts.push_back(path.substr(start, dot - start));
+    const auto dot = dotted.find('.', start);
+    parts.push_back(dotted.substr(start, dot - start));
     if (dot == std::string::npos) break;
     start = dot + 1;
   }

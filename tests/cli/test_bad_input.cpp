@@ -136,6 +136,14 @@ TEST_CASE("a --set with a list index out of range is named", "[cli]") {
                    "--set boundary.7.pressure=1e5");
 }
 
+TEST_CASE("a --set names a list item as error messages do, or is told how", "[cli]") {
+  require_rejected(tiny_scene, {"boundary[1].pressure: must be a number"}, "--set boundary[1].pressure=abc");
+  require_rejected(tiny_scene, {"--set boundary.7.pressure", "list index 7 is out of range"},
+                   "--set boundary[7].pressure=1e5");
+  require_rejected(tiny_scene, {"--set boundary[x].pressure", "a list item is named by its index"},
+                   "--set boundary[x].pressure=1e5");
+}
+
 TEST_CASE("a --set without '=' is rejected", "[cli]") {
   require_rejected(tiny_scene, {"--set material.E", "expected dotted.key=value"}, "--set material.E");
 }
