@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 
 #include "perinom/core/error.hpp"
@@ -113,6 +114,29 @@ void check_fracture_energy(const DamageSpec& d, const Scene& s, const Families& 
   throw InputError(s.source + ": damage.fracture_energy: " + text);
 }
 
+// A point probe reads the particle nearest its point. A point on the body or its surface is
+// within about a spacing of one (0.87 of it at a 3-D lattice's corner); one farther than two
+// of the nearest particle's spacings (to its own nearest neighbour) is outside the body or in
+// a hole, and its value would come from elsewhere.
+void check_probe_point(const ProbeSpec& p, const PointCloud& cloud, std::size_t nearest, double distance) {
+  const int d = cloud.dim;
+  double spacing2 = INFINITY;
+  for (std::size_t j = 0; j < cloud.size(); ++j) {
+    if (j == nearest) continue;
+    double r2 = 0.0;
+    for (int a = 0; a < d; ++a) r2 += std::pow(cloud.x[j * d + a] - cloud.x[nearest * d + a], 2);
+    spacing2 = std::min(spacing2, r2);
+  }
+  const double spacing = std::sqrt(spacing2);
+  if (!(distance > 2.0 * spacing)) return;
+  std::ostringstream msg;
+  msg << p.where << ".point: probe '" << p.name << "' is " << distance << " m from the nearest particle ("
+      << distance / spacing << " of its spacings; particle " << nearest << " at (";
+  for (int a = 0; a < d; ++a) msg << (a ? ", " : "") << cloud.x[nearest * d + a];
+  msg << ")): outside the body or in a hole; a point probe reads the particle nearest its point";
+  throw InputError(msg.str());
+}
+
 }  // namespace
 
 BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud) {
@@ -126,6 +150,7 @@ BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud) {
       for (int a = 0; a < d; ++a) r2 += std::pow(cloud.x[i * d + a] - p.point[a], 2);
       if (r2 < best) best = r2, arg = i;
     }
+    check_probe_point(p, cloud, arg, std::sqrt(best));
     b.particles.push_back(static_cast<ParticleId>(arg));
     return b;
   }
