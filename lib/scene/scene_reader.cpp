@@ -456,6 +456,9 @@ Scene parse_scene(const std::string& text, const std::string& source,
       if (step < 1) o.fail("vtk_steps", "load steps are counted from 1");
       s.output.vtk_steps.push_back(step);
     }
+    if (!s.output.vtk_steps.empty() && !s.load_path())
+      o.fail("vtk_steps", "counts load steps, and this scene has none (no stages, plasticity or solver.type lbc); "
+                          "use vtk_every");
     s.output.csv = o.boolean("csv", s.output.csv);
     s.output.checkpoint_every = o.integer("checkpoint_every", 0);
     if (s.output.checkpoint_every < 0) o.fail("checkpoint_every", "must be zero or positive");

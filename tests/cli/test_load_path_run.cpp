@@ -59,6 +59,9 @@ TEST_CASE("a plastic scene writes its step table, probe histories and plastic fi
                  "--set output.vtk_every=5 --set material.h=50");
   const fs::path out = d / "out";
   CHECK(lines(out / "load_steps.csv") == 1 + 10);
+  // The example's snapshots after steps 100 and 200 lie beyond the shortened path: said.
+  CHECK(slurp(d / "out.txt").find("warning: output.vtk_steps: load step(s) 100, 200 beyond the path's 10: no "
+                                  "snapshot there") != std::string::npos);
   // Each step's reactions: the scene's supports and the compression stage's own.
   CHECK(slurp(out / "load_steps.csv").find(",seconds,boundary.0.Rx,boundary.0.Ry,boundary.1.Rx,boundary.1.Ry,"
                                            "stages.1.boundary.1.Rx,stages.1.boundary.1.Ry\n") != std::string::npos);
