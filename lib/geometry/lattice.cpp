@@ -1,6 +1,7 @@
 #include "perinom/geometry/lattice.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "perinom/core/error.hpp"
@@ -38,6 +39,7 @@ PointCloud make_lattice(const BoxGeometry& box, double dx, double jitter, std::u
     cloud.spacing[a] = length / n[a];
     cell_volume *= cloud.spacing[a];
   }
+  std::vector<std::size_t> removed(box.holes.size(), 0);
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> offset(-0.5, 0.5);
   const long nz = (d == 3) ? n[2] : 1;
@@ -48,7 +50,8 @@ PointCloud make_lattice(const BoxGeometry& box, double dx, double jitter, std::u
         double p[3];
         for (int a = 0; a < d; ++a) p[a] = box.min[a] + (idx[a] + 0.5) * cloud.spacing[a];
         bool inside_hole = false;
-        for (const auto& h : box.holes) inside_hole = inside_hole || h.contains(p, d);
+        for (std::size_t h = 0; h < box.holes.size(); ++h)
+          if (box.holes[h].contains(p, d)) inside_hole = true, ++removed[h];
         if (inside_hole) continue;
         if (jitter > 0.0)
           for (int a = 0; a < d; ++a) p[a] += jitter * cloud.spacing[a] * offset(rng);
@@ -56,6 +59,15 @@ PointCloud make_lattice(const BoxGeometry& box, double dx, double jitter, std::u
         cloud.volume.push_back(cell_volume);
       }
   if (cloud.size() == 0) throw InputError("the box minus its holes holds no particle");
+  // A hole that holds no lattice point is not in the model: the user's body would run
+  // without it (a centre in mm in a box in m, a hole finer than the spacing).
+  for (std::size_t h = 0; h < box.holes.size(); ++h) {
+    if (removed[h] > 0) continue;
+    char text[200];
+    std::snprintf(text, sizeof text, "holes[%zu]: removes no particle: the hole lies outside the box or between "
+                  "the particles (radius %g m, spacing %g m)", h, box.holes[h].radius, dx);
+    throw InputError(text);
+  }
   return cloud;
 }
 

@@ -1,7 +1,9 @@
 #include "perinom/geometry/region.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <sstream>
 
 namespace perinom {
 
@@ -20,17 +22,54 @@ bool parse_side(const std::string& name, int dim, Side& side) {
   return true;
 }
 
+namespace {
+
+double distance2(const PointCloud& cloud, std::size_t i, const double* point) {
+  double r2 = 0.0;
+  for (int a = 0; a < cloud.dim; ++a) r2 += (cloud.x[i * cloud.dim + a] - point[a]) * (cloud.x[i * cloud.dim + a] - point[a]);
+  return r2;
+}
+
+}  // namespace
+
+NearestParticle nearest_particle(const PointCloud& cloud, const double* point) {
+  double best = INFINITY;
+  std::size_t arg = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const double r2 = distance2(cloud, i, point);
+    if (r2 < best) best = r2, arg = i;
+  }
+  // The spacing: the distance to its d-th nearest neighbour, a lattice's spacing even at a
+  // corner, which a sliver element's one close neighbour does not shrink.
+  std::vector<double> closest(cloud.dim, INFINITY);  // ascending
+  for (std::size_t j = 0; j < cloud.size(); ++j) {
+    if (j == arg) continue;
+    double r2 = distance2(cloud, j, cloud.point(arg));
+    for (double& c : closest)
+      if (r2 < c) std::swap(r2, c);
+  }
+  double spacing2 = INFINITY;
+  for (const double c : closest)
+    if (c < INFINITY) spacing2 = c;  // a cloud of fewer particles: its farthest
+  return {static_cast<ParticleId>(arg), std::sqrt(best), std::sqrt(spacing2)};
+}
+
+std::string outside_body(const NearestParticle& n, const PointCloud& cloud) {
+  if (!(n.distance > 2.0 * n.spacing)) return "";
+  std::ostringstream msg;
+  msg << "is " << n.distance << " m from the nearest particle (" << n.distance / n.spacing
+      << " of its spacings; particle " << n.id << " at (";
+  for (int a = 0; a < cloud.dim; ++a) msg << (a ? ", " : "") << cloud.x[n.id * cloud.dim + a];
+  msg << ")): outside the body or in a hole";
+  return msg.str();
+}
+
 std::vector<ParticleId> select(const Region& region, const BoxGeometry& box,
                                const PointCloud& cloud) {
   std::vector<ParticleId> ids;
   const int d = cloud.dim;
   if (region.is_point) {
-    double best = INFINITY;
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-      double r2 = 0.0;
-      for (int a = 0; a < d; ++a) r2 += (cloud.x[i * d + a] - region.point[a]) * (cloud.x[i * d + a] - region.point[a]);
-      if (r2 < best) best = r2, ids.assign(1, static_cast<ParticleId>(i));
-    }
+    if (cloud.size() > 0) ids.push_back(nearest_particle(cloud, region.point.data()).id);
     return ids;
   }
   for (std::size_t i = 0; i < cloud.size(); ++i) {

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <map>
 #include <numeric>
-#include <sstream>
 #include <stdexcept>
 
 #include "perinom/core/error.hpp"
@@ -13,6 +12,7 @@
 #include "perinom/geometry/boundary_facets.hpp"
 #include "perinom/geometry/mesh_body.hpp"
 #include "perinom/geometry/point_file.hpp"
+#include "perinom/geometry/region.hpp"
 #include "perinom/models/cohesive_bonds.hpp"
 #include "perinom/neighbors/search.hpp"
 #include "scene_loading.hpp"
@@ -114,44 +114,18 @@ void check_fracture_energy(const DamageSpec& d, const Scene& s, const Families& 
   throw InputError(s.source + ": damage.fracture_energy: " + text);
 }
 
-// A point probe reads the particle nearest its point. A point on the body or its surface is
-// within about a spacing of one (0.87 of it at a 3-D lattice's corner); one farther than two
-// of the nearest particle's spacings (to its own nearest neighbour) is outside the body or in
-// a hole, and its value would come from elsewhere.
-void check_probe_point(const ProbeSpec& p, const PointCloud& cloud, std::size_t nearest, double distance) {
-  const int d = cloud.dim;
-  double spacing2 = INFINITY;
-  for (std::size_t j = 0; j < cloud.size(); ++j) {
-    if (j == nearest) continue;
-    double r2 = 0.0;
-    for (int a = 0; a < d; ++a) r2 += std::pow(cloud.x[j * d + a] - cloud.x[nearest * d + a], 2);
-    spacing2 = std::min(spacing2, r2);
-  }
-  const double spacing = std::sqrt(spacing2);
-  if (!(distance > 2.0 * spacing)) return;
-  std::ostringstream msg;
-  msg << p.where << ".point: probe '" << p.name << "' is " << distance << " m from the nearest particle ("
-      << distance / spacing << " of its spacings; particle " << nearest << " at (";
-  for (int a = 0; a < d; ++a) msg << (a ? ", " : "") << cloud.x[nearest * d + a];
-  msg << ")): outside the body or in a hole; a point probe reads the particle nearest its point";
-  throw InputError(msg.str());
-}
-
 }  // namespace
 
 BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud) {
   const int d = cloud.dim;
   BoundProbe b{p, {}, {}};
   if (!p.is_line) {
-    double best = INFINITY;
-    std::size_t arg = 0;
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-      double r2 = 0.0;
-      for (int a = 0; a < d; ++a) r2 += std::pow(cloud.x[i * d + a] - p.point[a], 2);
-      if (r2 < best) best = r2, arg = i;
-    }
-    check_probe_point(p, cloud, arg, std::sqrt(best));
-    b.particles.push_back(static_cast<ParticleId>(arg));
+    const NearestParticle nearest = nearest_particle(cloud, p.point.data());
+    const std::string outside = outside_body(nearest, cloud);
+    if (!outside.empty())
+      throw InputError(p.where + ".point: probe '" + p.name + "' " + outside +
+                       "; a point probe reads the particle nearest its point");
+    b.particles.push_back(nearest.id);
     return b;
   }
   double len2 = 0.0;
@@ -209,6 +183,9 @@ Body scene_body(const Scene& s, Problem& p) {
   p.groups = body.groups;
   p.mesh_elements = body.elements;
   p.mean_size = body.mean_size;
+  if (s.damage)  // checked here, before any solve (the breaking is set up when the solve starts)
+    for (std::size_t k = 0; k < s.damage->no_fail.size(); ++k)
+      detail::select_region(s.damage->no_fail[k], s, p.cloud, s.damage->no_fail_where[k]);
   return body;
 }
 

@@ -5,6 +5,7 @@
 #include "perinom/geometry/region.hpp"
 #include "perinom/models/correspondence.hpp"
 #include "perinom/scene/scene.hpp"
+#include "scene_loading.hpp"
 
 namespace perinom {
 
@@ -20,7 +21,8 @@ SceneBreaking::SceneBreaking(Problem& p) : p_(&p) {
     body.soften_broken_bonds({d->f_t, d->fracture_energy, body.material().E});
   }
   breaking_ = std::make_unique<BondBreaking>(body, p.cloud, c, parameter);
-  for (const Region& zone : d->no_fail) breaking_->hold(select(zone, p.scene.geometry, p.cloud));
+  for (std::size_t k = 0; k < d->no_fail.size(); ++k)
+    breaking_->hold(detail::select_region(d->no_fail[k], p.scene, p.cloud, d->no_fail_where[k]));
   BondBreaking* b = breaking_.get();
   // find runs at the u whose force was just taken (ModelChanges): its grad u is kept.
   const CorrespondenceModel* model = &body;

@@ -84,6 +84,7 @@ void read_fracture(Fields& top, Scene& s) {
     for (std::size_t k = 0; k < keep.size(); ++k) {
       Fields item(keep[k], f.key("no_fail") + "[" + std::to_string(k) + "]", s.source);
       d.no_fail.push_back(read_region(item, s));
+      d.no_fail_where.push_back(detail::where(s.source, keep[k]) + f.key("no_fail") + "[" + std::to_string(k) + "]");
       if (d.no_fail.back().is_group()) item.fail("region", "a no-fail zone is a side, a box or a point, not a group");
       item.finish();
     }

@@ -74,13 +74,25 @@ const FacetGroup& region_group(const BoundarySpec& b, const BoundaryData& bounda
 
 }  // namespace
 
+std::vector<ParticleId> select_region(const Region& region, const Scene& s, const PointCloud& cloud,
+                                      const std::string& where) {
+  const std::vector<ParticleId> ids = select(region, s.geometry, cloud);
+  if (ids.empty()) throw InputError(where + ".region: selects no particle");
+  if (region.is_point) {
+    const std::string outside = outside_body(nearest_particle(cloud, region.point.data()), cloud);
+    if (!outside.empty())
+      throw InputError(where + ".region.point: the point " + outside + "; a point region holds the particle nearest its point");
+  }
+  return ids;
+}
+
 Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, const PointCloud& cloud,
                      FaceOf& face_of, const BoundaryData& data) {
   const int d = s.dim;
   Loading load;
   for (const auto& b : boundary) {
     const FacetGroup* group = b.region.is_group() ? &region_group(b, data) : nullptr;
-    const auto ids = group ? group_particles(*group, *data.facets) : select(b.region, s.geometry, cloud);
+    const auto ids = group ? group_particles(*group, *data.facets) : select_region(b.region, s, cloud, b.where);
     if (ids.empty()) throw InputError(b.where + ".region: selects no particle");
     // A group's face constraint acts at the largest facet the particle owns in the group.
     std::map<ParticleId, std::size_t> facet_of;

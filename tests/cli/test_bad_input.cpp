@@ -134,6 +134,28 @@ TEST_CASE("a point probe outside the body names the probe and the particle it wo
                    "--set probes[0].point=[0.005,0.015]");
 }
 
+TEST_CASE("a point region outside the body is an error, not the nearest corner held", "[cli]") {
+  const std::string s = with(tiny_scene, "region: bottom", "region: {point: [0.005, 0.015]}");
+  require_rejected(s, {"boundary[0].region.point: the point is 0.0055", "particle 94 at (0.0045, 0.0095)", "outside the body"});
+}
+
+TEST_CASE("snapshots by load step on a scene without a load path are refused", "[cli]") {
+  require_rejected(tiny_scene, {"output.vtk_steps: counts load steps, and this scene has none"},
+                   "--set output.vtk_steps=[3]");
+}
+
+TEST_CASE("a hole that removes no particle is refused: the body would run without it", "[cli]") {
+  const std::string box = "box: {min: [0.0, 0.0], max: [0.01, 0.01]}";
+  SECTION("a centre in millimetres in a box in metres") {
+    const std::string s = with(tiny_scene, box, box + "\n  holes: [{shape: circle, center: [5.0, 5.0], radius: 0.002}]");
+    require_rejected(s, {"geometry: holes[0]: removes no particle", "radius 0.002 m, spacing 0.001 m"});
+  }
+  SECTION("a hole finer than the spacing, between particles") {
+    const std::string s = with(tiny_scene, box, box + "\n  holes: [{shape: circle, center: [0.005, 0.005], radius: 0.0004}]");
+    require_rejected(s, {"geometry: holes[0]: removes no particle"});
+  }
+}
+
 TEST_CASE("a --set to an unknown key is named like a key in the file", "[cli]") {
   require_rejected(tiny_scene, {"material.Young: unknown key"}, "--set material.Young=1");
 }

@@ -129,6 +129,20 @@ TEST_CASE("a precrack of zero length and a velocity off Verlet or at a face are 
   }
 }
 
+TEST_CASE("a no-fail zone that holds no particle is refused before the run, not ignored", "[cli][fracture]") {
+  const std::string zone = "damage: {criterion: instability, s_max: 0.02, no_fail: [{region: ";
+  SECTION("an inverted box") {
+    const std::string s = with(fracture_scene(), "damage: {criterion: instability, s_max: 0.02}",
+                               zone + "{box: {min: [0.01, 0.01], max: [0.0, 0.0]}}}]}");
+    require_rejected(s, {at_line(s, "no_fail", "damage.no_fail[0].region: selects no particle")});
+  }
+  SECTION("a point off the body") {
+    const std::string s = with(fracture_scene(), "damage: {criterion: instability, s_max: 0.02}",
+                               zone + "{point: [5.0, 5.0]}}]}");
+    require_rejected(s, {"damage.no_fail[0].region.point: the point is", "outside the body"});
+  }
+}
+
 TEST_CASE("a Verlet run whose energy balance ends beyond 1% says so, and one within it does not", "[cli][fracture]") {
   // The coarse SENT without stabilization: zero-energy modes grow as bonds break, 2.6% off;
   // with C_hg = 0.5, 0.2%.

@@ -41,6 +41,22 @@ struct Region {
 std::vector<ParticleId> select(const Region& region, const BoxGeometry& box,
                                const PointCloud& cloud);
 
+/// The particle nearest a point (reference positions; the lowest index on a tie), its
+/// distance from the point, and that particle's spacing: the distance to its d-th nearest
+/// neighbour (a lattice's spacing; in a smaller cloud its farthest; infinite in a cloud of one).
+struct NearestParticle {
+  ParticleId id = 0;
+  double distance = 0.0;
+  double spacing = 0.0;
+};
+NearestParticle nearest_particle(const PointCloud& cloud, const double* point);
+
+/// A point on the body or its surface lies within about a spacing of its nearest particle
+/// (0.87 of one at a 3-D lattice's corner). Empty when it lies within two; otherwise what is
+/// wrong, for an error naming the key: "is D m from the nearest particle (R of its spacings;
+/// particle N at (x, y)): outside the body or in a hole".
+std::string outside_body(const NearestParticle& nearest, const PointCloud& cloud);
+
 /// Outward unit normal of a side (dim entries).
 std::array<double, 3> outward_normal(const Side& side);
 

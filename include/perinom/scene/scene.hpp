@@ -111,6 +111,7 @@ struct DamageSpec {
   double fracture_energy = 0.0;  ///< stress: G_f (J/m^2), broken bonds soften (models/cohesive_bonds.hpp); 0: they vanish
   std::int64_t every = 1;  ///< look for bonds to break every this many steps
   std::vector<Region> no_fail;  ///< bonds with an end in one of these never break (box, side or point regions)
+  std::vector<std::string> no_fail_where;  ///< "file:line: damage.no_fail[k]" for messages
 };
 
 struct ProbeSpec {

@@ -1,0 +1,52 @@
+// The particle nearest a point, and when a point is too far from every particle to be on the
+// body (point probes and point regions refuse it).
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cmath>
+
+#include "perinom/geometry/lattice.hpp"
+#include "perinom/geometry/region.hpp"
+
+using namespace perinom;
+
+namespace {
+
+NearestParticle nearest(const PointCloud& c, std::array<double, 3> p) { return nearest_particle(c, p.data()); }
+
+}  // namespace
+
+TEST_CASE("a lattice's spacing is found at its interior, faces and corners", "[geometry]") {
+  for (const int dim : {2, 3}) {
+    BoxGeometry box;
+    box.dim = dim;
+    box.max = {5, 4, dim == 3 ? 3.0 : 0.0};
+    const PointCloud c = make_lattice(box, 1.0);
+    for (const auto& p : {std::array<double, 3>{2.5, 1.5, 1.5}, {0.5, 1.5, 1.5}, {0.5, 0.5, 0.5}, {4.5, 3.5, 2.5}}) {
+      const NearestParticle n = nearest(c, p);
+      CHECK(n.distance == Approx(0.0).margin(1e-12));
+      CHECK(n.spacing == Approx(1.0));
+    }
+    // On the body: a face's centre, a corner (0.71 / 0.87 of a spacing away). Off it: beyond two.
+    CHECK(outside_body(nearest(c, {2.5, 0.0, 1.5}), c).empty());
+    CHECK(outside_body(nearest(c, {0.0, 0.0, 0.0}), c).empty());
+    CHECK(outside_body(nearest(c, {2.5, -1.4, 1.5}), c).empty());  // 1.9 spacings
+    const std::string far = outside_body(nearest(c, {2.5, -1.6, 1.5}), c);
+    CHECK(far.find("is 2.1 m from the nearest particle (2.1 of its spacings; particle ") == 0);
+    CHECK(far.find("outside the body or in a hole") != std::string::npos);
+  }
+}
+
+TEST_CASE("one close neighbour does not shrink the spacing a far point is measured by", "[geometry]") {
+  BoxGeometry box;
+  box.dim = 2;
+  box.max = {4, 4, 0};
+  PointCloud c = make_lattice(box, 1.0);
+  // A sliver's centroid next to the corner particle's: a hundredth of a spacing away.
+  c.x.insert(c.x.end(), {0.51, 0.5});
+  c.volume.push_back(c.volume[0]);
+  const NearestParticle n = nearest(c, {-1.0, 0.5, 0.0});
+  CHECK(n.id == 0);
+  CHECK(n.spacing == Approx(1.0));  // its second nearest: a lattice neighbour, not the sliver
+  CHECK(outside_body(n, c).empty());       // 1.5 away: a point on a coarse face is not refused
+}
