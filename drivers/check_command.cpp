@@ -147,9 +147,23 @@ int check(const Options& opt) {
   std::printf("  total           %.2f MiB (%.1f bytes per bond)\n", mb(total), double(total) / p.bonds);
   std::printf("  peak memory     %.2f MiB (VmHWM, the process so far), estimated before building %.2f MiB\n",
               mb(peak_resident_bytes()), mb(estimate.bytes));
-  for (const auto& probe : p.probes)
-    std::printf("  probe %-20s %s, %zu particle(s)\n", probe.spec.name.c_str(),
-                probe.spec.is_line ? "line" : "point", probe.particles.size());
+  for (const auto& probe : p.probes) {
+    if (probe.spec.is_line) {
+      std::printf("  probe %-20s line, %zu particle(s)\n", probe.spec.name.c_str(), probe.particles.size());
+      continue;
+    }
+    // Where a point probe's value comes from: its particle, or the point through it.
+    const int d = p.cloud.dim;
+    const double* x = p.cloud.point(probe.particles[0]);
+    double r2 = 0.0;
+    for (int a = 0; a < d; ++a) r2 += (x[a] - probe.spec.point[a]) * (x[a] - probe.spec.point[a]);
+    char at[96];
+    if (d == 3) std::snprintf(at, sizeof at, "%g, %g, %g", x[0], x[1], x[2]);
+    else std::snprintf(at, sizeof at, "%g, %g", x[0], x[1]);
+    std::printf("  probe %-20s point, particle %u at (%s), %.3g m from the point: %s\n", probe.spec.name.c_str(),
+                static_cast<unsigned>(probe.particles[0]), at, std::sqrt(r2),
+                probe.spec.reconstruct ? "reconstructed at the point" : "its value is read at the particle");
+  }
   std::printf("  setup time      %.3f s\n", timer.total());
   if (opt.ranks > 0) print_partition(p, opt.ranks);
   if (opt.spectrum) {

@@ -14,6 +14,11 @@ TEST_CASE("the tiny scene used below is valid", "[cli]") {
   INFO("stderr: " << o.err);
   CHECK(o.exit_code == 0);
   CHECK(o.err.empty());
+  // check says where a point probe's value comes from: the top face's centre lies between
+  // two particles, and the lower-numbered is read.
+  INFO(o.out);
+  CHECK(o.out.find("probe top_uy               point, particle 94 at (0.0045, 0.0095), 0.000707 m from the point: "
+                   "its value is read at the particle") != std::string::npos);
 }
 
 TEST_CASE("an unknown top-level key is named with its line", "[cli]") {
