@@ -76,13 +76,15 @@ const FacetGroup& region_group(const BoundarySpec& b, const BoundaryData& bounda
 
 std::vector<ParticleId> select_region(const Region& region, const Scene& s, const PointCloud& cloud,
                                       const std::string& where) {
-  const std::vector<ParticleId> ids = select(region, s.geometry, cloud);
-  if (ids.empty()) throw InputError(where + ".region: selects no particle");
   if (region.is_point) {
-    const std::string outside = outside_body(nearest_particle(cloud, region.point.data()), cloud);
+    const NearestParticle nearest = nearest_particle(cloud, region.point.data());
+    const std::string outside = outside_body(nearest, cloud);
     if (!outside.empty())
       throw InputError(where + ".region.point: the point " + outside + "; a point region holds the particle nearest its point");
+    return {nearest.id};
   }
+  const std::vector<ParticleId> ids = select(region, s.geometry, cloud);
+  if (ids.empty()) throw InputError(where + ".region: selects no particle");
   return ids;
 }
 

@@ -31,14 +31,14 @@ struct BoundaryData {
   const BoundaryTrace* trace = nullptr;
 };
 
-/// The constraints and forces of a boundary list; face-located constraints are recorded in
-/// face_of for couple_to_faces. Throws InputError naming the item for a region that selects
-/// nothing or an unknown group.
 /// The particles a side, box or point region of the scene selects; InputError naming `where`
 /// (e.g. "file:line: boundary[0]") when it selects none or its point lies off the body.
 std::vector<ParticleId> select_region(const Region& region, const Scene& s, const PointCloud& cloud,
                                       const std::string& where);
 
+/// The constraints and forces of a boundary list; face-located constraints are recorded in
+/// face_of for couple_to_faces. Throws InputError naming the item for a region that selects
+/// nothing or an unknown group.
 Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, const PointCloud& cloud,
                      FaceOf& face_of, const BoundaryData& data);
 

@@ -48,5 +48,5 @@ TEST_CASE("one close neighbour does not shrink the spacing a far point is measur
   const NearestParticle n = nearest(c, {-1.0, 0.5, 0.0});
   CHECK(n.id == 0);
   CHECK(n.spacing == Approx(1.0));  // its second nearest: a lattice neighbour, not the sliver
-  CHECK(outside_body(n, c).empty());       // 1.5 away: a point on a coarse face is not refused
+  CHECK(outside_body(n, c).empty());  // 1.5 spacings away: within two, not refused (0.01 would give 150)
 }
