@@ -25,6 +25,7 @@
 #include "memory_estimate.hpp"
 #include "output_folder.hpp"
 #include "reactions_output.hpp"
+#include "small_strain_check.hpp"
 #include "run_output.hpp"
 #include "restart.hpp"
 #include "snapshot.hpp"
@@ -278,6 +279,7 @@ int run(const Options& opt) {
     }
     add_reaction_results(p.physics(), scene.load_path() ? p.stages.back().loading : p.loading, s_end, u, dynamic, summary,
                          carried);
+    check_small_strain(p, u, summary);
   }
   if (scene.solver.check == "newton" && failure.empty()) {
     timer.start("newton check");

@@ -124,6 +124,10 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
   check(KINSetNumMaxIters(kin.get(), opt.max_iterations), "KINSetNumMaxIters");
   check(KINSetFuncNormTol(kin.get(), opt.tolerance), "KINSetFuncNormTol");
   check(KINSetScaledStepTol(kin.get(), opt.step_tolerance), "KINSetScaledStepTol");
+  // No cap on a Newton step's length: KINSOL's default, 1000 (metres here) from a zero start,
+  // stopped a linear scene in which a unit mistake made the displacements that large (flag
+  // KIN_MXNEWT_5X_EXCEEDED) where one step solves it; the run then says the answer is not small.
+  check(KINSetMaxNewtonStep(kin.get(), 1e100), "KINSetMaxNewtonStep");
   check(KINSetPrintLevel(kin.get(), 0), "KINSetPrintLevel");
   check(KINSetErrHandlerFn(kin.get(), [](int, const char*, const char*, char*, void*) {}, nullptr), "KINSetErrHandlerFn");
 
