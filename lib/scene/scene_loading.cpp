@@ -2,6 +2,8 @@
 #include "scene_loading.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 
@@ -88,10 +90,64 @@ std::vector<ParticleId> select_region(const Region& region, const Scene& s, cons
   return ids;
 }
 
+namespace {
+
+/// One boundary item's share of the external force.
+struct ItemLoad {
+  const BoundarySpec* item;
+  std::vector<double> force;
+};
+
+/// A traction or pressure that acts only on components held at their particles (`at: layer`)
+/// goes whole into the supports' reactions and moves nothing: refused, naming the item and the
+/// support that takes it (a face-located hold passes a load on through its reconstruction).
+/// "stages.1.boundary.0" as messages name it: "stages[1].boundary[0]".
+std::string bracketed(const std::string& key) {
+  std::string out;
+  for (std::size_t i = 0; i < key.size(); ++i) {
+    if (key[i] == '.' && i + 1 < key.size() && std::isdigit(static_cast<unsigned char>(key[i + 1]))) {
+      std::size_t j = i + 1;
+      while (j < key.size() && std::isdigit(static_cast<unsigned char>(key[j]))) ++j;
+      out += "[" + key.substr(i + 1, j - i - 1) + "]";
+      i = j - 1;
+    } else {
+      out += key[i];
+    }
+  }
+  return out;
+}
+
+void refuse_held_loads(const std::vector<ItemLoad>& loads, const Loading& load, const FaceOf& face_of) {
+  if (loads.empty()) return;
+  std::vector<std::int64_t> held(loads.front().force.size(), -1);  // dof -> its constraint, or -1
+  for (std::size_t k = 0; k < load.fixed.size(); ++k)
+    if (face_of.find(load.fixed[k]) == face_of.end()) held[load.fixed[k]] = static_cast<std::int64_t>(k);
+  for (const ItemLoad& l : loads) {
+    double total = 0.0, absorbed = 0.0;
+    int support = -1;
+    for (std::size_t dof = 0; dof < l.force.size(); ++dof) {
+      if (l.force[dof] == 0.0) continue;
+      total += std::abs(l.force[dof]);
+      if (held[dof] < 0) continue;
+      absorbed += std::abs(l.force[dof]);
+      if (!load.support.empty() && load.support[held[dof]] >= 0) support = load.support[held[dof]];
+    }
+    if (total == 0.0 || absorbed < total) continue;
+    const std::string by = support >= 0 ? " (by " + bracketed(load.support_names[support]) + ")" : "";
+    throw InputError(l.item->where + (l.item->traction ? ".traction" : ".pressure") +
+                     ": acts only on components held at their particles" + by +
+                     ": the whole load goes into the support's reaction and moves nothing (hold those components "
+                     "elsewhere, or at the face: at: face)");
+  }
+}
+
+}  // namespace
+
 Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, const PointCloud& cloud,
                      FaceOf& face_of, const BoundaryData& data) {
   const int d = s.dim;
   Loading load;
+  std::vector<ItemLoad> loads;
   for (const auto& b : boundary) {
     const FacetGroup* group = b.region.is_group() ? &region_group(b, data) : nullptr;
     const auto ids = group ? group_particles(*group, *data.facets) : select_region(b.region, s, cloud, b.where);
@@ -122,19 +178,23 @@ Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, 
     if (!b.traction && !b.pressure) continue;
     if (load.force.empty()) load.force.assign(cloud.size() * d, 0.0);
     if (b.pressure && load.pressure_force.empty()) load.pressure_force.assign(cloud.size() * d, 0.0);
+    std::vector<double> own(load.force.size(), 0.0);
     if (group) {
       const double zero[3] = {0, 0, 0};
-      add_group_traction(*group, b.traction ? b.traction->data() : zero, b.pressure.value_or(0.0), data, load.force);
+      add_group_traction(*group, b.traction ? b.traction->data() : zero, b.pressure.value_or(0.0), data, own);
       if (b.pressure) add_group_traction(*group, zero, *b.pressure, data, load.pressure_force);
-      continue;
+    } else {
+      const Side& side = b.region.side;
+      add_side_traction(side, ids, side_load(side, b.traction, b.pressure.value_or(0.0), d).data(), cloud, data.trace,
+                        own);
+      if (b.pressure)
+        add_side_traction(side, ids, side_load(side, std::nullopt, *b.pressure, d).data(), cloud, data.trace,
+                          load.pressure_force);
     }
-    const Side& side = b.region.side;
-    add_side_traction(side, ids, side_load(side, b.traction, b.pressure.value_or(0.0), d).data(), cloud, data.trace,
-                      load.force);
-    if (!b.pressure) continue;
-    add_side_traction(side, ids, side_load(side, std::nullopt, *b.pressure, d).data(), cloud, data.trace,
-                      load.pressure_force);
+    for (std::size_t k = 0; k < own.size(); ++k) load.force[k] += own[k];
+    loads.push_back({&b, std::move(own)});
   }
+  refuse_held_loads(loads, load, face_of);
   return load;
 }
 

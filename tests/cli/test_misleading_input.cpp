@@ -141,3 +141,27 @@ boundary:
   // A plane condition given in 3-D is still refused.
   require_rejected(with(s, "plane: null", "plane: strain"), {"material.plane: only 2-D scenes"});
 }
+
+TEST_CASE("a load that acts only on components held at their particles is refused, naming the support", "[cli]") {
+  // The top both held in y (at its particles) and pulled in y: with the classical formulation
+  // the traction sits on those particles and went whole into the reaction, exit 0 and a body
+  // that did not move. Through the consistent formulation's trace it reaches the particles
+  // below, and the body deforms: accepted.
+  const std::string held = with(tiny_scene, "  - region: top\n    pressure: 1.0e6\n",
+                                "  - region: top\n    fix: [y]\n  - region: top\n    traction: [0.0, 1.0e6]\n");
+  const std::string classical = with(held, "solver:\n", "model: {type: correspondence, formulation: classical}\nsolver:\n");
+  SECTION("classical: refused") {
+    require_rejected(classical, {"scene.yaml:", "boundary[2].traction: acts only on components held at their particles "
+                                 "(by boundary[1]): the whole load goes into the support's reaction"});
+  }
+  SECTION("the x component is free: accepted") {
+    ScratchDir dir;
+    std::ofstream(dir.path / "scene.yaml") << with(classical, "traction: [0.0, 1.0e6]", "traction: [1.0e5, 1.0e6]");
+    CHECK(perinom(dir, "check scene.yaml").exit_code == 0);
+  }
+  SECTION("consistent: accepted") {
+    ScratchDir dir;
+    std::ofstream(dir.path / "scene.yaml") << held;
+    CHECK(perinom(dir, "check scene.yaml").exit_code == 0);
+  }
+}
