@@ -45,6 +45,7 @@
 #include "rank_newton.hpp"
 #include "rank_memory.hpp"
 #include "reactions_output.hpp"
+#include "small_strain_check.hpp"
 #include "run_output.hpp"
 #include "terminal_progress.hpp"
 
@@ -265,6 +266,7 @@ int run_distributed(const Options& opt) {
   if (rep.failure.empty()) {
     const double s_end = dynamic && scene.solver.ramp_time > 0.0 ? std::min(1.0, rep.end_time / scene.solver.ramp_time) : 1.0;
     add_reaction_results(distributed, scene.load_path() ? stages.back().loading : loading, s_end, u, dynamic, summary);
+    check_small_strain_over_ranks(run, u, summary);
   }
   summary["probes"] = probes;
   timer.stop();

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <string>
 
+#include "perinom/distributed/ranks.hpp"
+
 namespace perinom::cli {
 namespace {
 
@@ -13,72 +15,79 @@ const OutputField* find_field(const std::vector<OutputField>& fields, const std:
   return nullptr;
 }
 
-io::Json place(const Problem& p, std::size_t i, std::string& text) {
-  const int d = p.cloud.dim;
-  io::Json x = io::Json::array();
-  char buf[48];
-  for (int a = 0; a < d; ++a) {
-    x.push_back(p.cloud.x[i * d + a]);
-    std::snprintf(buf, sizeof buf, "%s%g", a ? ", " : "", p.cloud.x[i * d + a]);
-    text += buf;
+}  // namespace
+
+SmallStrainMeasure measure_small_strain(const Scene& scene, const Model& model, const double* u, std::size_t particles) {
+  SmallStrainMeasure m;
+  if (scene.model.kinematics != "small_strain") return m;
+  const std::vector<OutputField> fields = model.output_fields(u, true);
+  const OutputField* H = find_field(fields, "displacement_gradient");
+  const OutputField* w = find_field(fields, "deflection");
+  if (!H && !w) return m;
+  m.kind = H ? SmallStrainMeasure::Kind::gradient : SmallStrainMeasure::Kind::deflection;
+  const OutputField& f = H ? *H : *w;
+  const OutputField* damage = H ? find_field(fields, "damage") : nullptr;
+  const int c = f.components;
+  for (std::size_t i = 0; i < particles; ++i) {
+    if (damage && damage->values[i] > 0.0) continue;
+    double s = 0.0;
+    for (int k = 0; k < c; ++k) s += f.values[i * c + k] * f.values[i * c + k];
+    if (std::sqrt(s) > m.value) m.value = std::sqrt(s), m.particle = i;
   }
-  return x;
+  return m;
 }
 
-/// A thin plate's largest |w| against its thickness.
-void check_plate(const Problem& p, const OutputField& w, io::Json& summary) {
-  double largest = 0.0;
-  std::size_t at = 0;
-  for (std::size_t i = 0; i < w.values.size(); ++i)
-    if (std::abs(w.values[i]) > largest) largest = std::abs(w.values[i]), at = i;
-  const double t = p.scene.geometry.thickness;
+void report_small_strain(const Problem& p, const SmallStrainMeasure& m, io::Json& summary) {
+  if (m.kind == SmallStrainMeasure::Kind::none) return;
+  const int d = p.cloud.dim;
+  io::Json j = io::Json::object(), x = io::Json::array();
   std::string where;
-  io::Json j = io::Json::object();
-  j["value"] = largest;
-  j["over_thickness"] = largest / t;
-  j["particle"] = static_cast<long long>(at);
-  j["position"] = place(p, at, where);
+  char buf[48];
+  for (int a = 0; a < d; ++a) {
+    x.push_back(p.cloud.x[m.particle * d + a]);
+    std::snprintf(buf, sizeof buf, "%s%g", a ? ", " : "", p.cloud.x[m.particle * d + a]);
+    where += buf;
+  }
+  j["value"] = m.value;
+  if (m.kind == SmallStrainMeasure::Kind::gradient) {
+    j["particle"] = static_cast<long long>(m.particle);
+    j["position"] = x;
+    summary["largest_displacement_gradient"] = j;
+    if (m.value > kSmallGradientLimit)
+      std::printf("perinom: warning: the displacement gradient |grad u| reaches %.3g at particle %zu at (%s) "
+                  "(summary.json largest_displacement_gradient); beyond about %g strains and rotations are not small, "
+                  "and a small-strain model's answer is not the body's: check the units of the moduli, loads and "
+                  "lengths\n",
+                  m.value, m.particle, where.c_str(), kSmallGradientLimit);
+    return;
+  }
+  const double t = p.scene.geometry.thickness;
+  j["over_thickness"] = m.value / t;
+  j["particle"] = static_cast<long long>(m.particle);
+  j["position"] = x;
   summary["largest_deflection"] = j;
-  if (largest > kSmallDeflectionLimit * t)
+  if (m.value > kSmallDeflectionLimit * t)
     std::printf("perinom: warning: the deflection reaches %.3g m at node %zu at (%s), %.3g times the plate's thickness "
                 "(summary.json largest_deflection); beyond about %g of it the plate stretches as it bends, which the "
                 "linear plate does not model, and its answer is not the plate's: check the units of the moduli, "
                 "loads and lengths\n",
-                largest, at, where.c_str(), largest / t, kSmallDeflectionLimit);
+                m.value, m.particle, where.c_str(), m.value / t, kSmallDeflectionLimit);
 }
 
-}  // namespace
-
 void check_small_strain(const Problem& p, const std::vector<double>& u, io::Json& summary) {
-  if (p.scene.model.kinematics != "small_strain") return;
-  const std::vector<OutputField> fields = p.physics().output_fields(u.data(), true);
-  const OutputField* H = find_field(fields, "displacement_gradient");
-  if (!H) {
-    if (const OutputField* w = find_field(fields, "deflection")) check_plate(p, *w, summary);
-    return;
-  }
-  const OutputField* damage = find_field(fields, "damage");
-  const int dd = H->components;
-  double largest = 0.0;
-  std::size_t at = 0;
-  for (std::size_t i = 0; i < p.cloud.size(); ++i) {
-    if (damage && damage->values[i] > 0.0) continue;
-    double s = 0.0;
-    for (int c = 0; c < dd; ++c) s += H->values[i * dd + c] * H->values[i * dd + c];
-    if (std::sqrt(s) > largest) largest = std::sqrt(s), at = i;
-  }
-  std::string where;
-  io::Json j = io::Json::object();
-  j["value"] = largest;
-  j["particle"] = static_cast<long long>(at);
-  j["position"] = place(p, at, where);
-  summary["largest_displacement_gradient"] = j;
-  if (largest > kSmallGradientLimit)
-    std::printf("perinom: warning: the displacement gradient |grad u| reaches %.3g at particle %zu at (%s) "
-                "(summary.json largest_displacement_gradient); beyond about %g strains and rotations are not small, "
-                "and a small-strain model's answer is not the body's: check the units of the moduli, loads and "
-                "lengths\n",
-                largest, at, where.c_str(), kSmallGradientLimit);
+  report_small_strain(p, measure_small_strain(p.scene, p.physics(), u.data(), p.cloud.size()), summary);
+}
+
+void check_small_strain_over_ranks(const RankRun& run, const std::vector<double>& u, io::Json& summary) {
+  SmallStrainMeasure m = measure_small_strain(run.frame.scene, run.model, u.data(), run.part.owned);
+  if (m.kind == SmallStrainMeasure::Kind::none) return;  // alike on every rank: the scene decides
+  const double largest = max_over_ranks(m.value);
+  const double holder = -max_over_ranks(m.value == largest ? -double(run.rank) : -double(run.ranks));
+  const bool mine = double(run.rank) == holder;
+  const double particle = sum_over_ranks(mine && run.part.owned > 0 ? double(run.part.particles[m.particle]) : 0.0);
+  m.value = largest;
+  m.particle = static_cast<std::size_t>(particle);
+  report_small_strain(run.frame, m, summary);
 }
 
 }  // namespace perinom::cli
