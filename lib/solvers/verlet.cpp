@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #include "perinom/core/error.hpp"
 #include "perinom/core/thread_governor.hpp"
@@ -264,6 +265,18 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   if (progress) progress->finish();
 }
 
+/// A failure's message, with what a given step has to do with it: a `dt` above the stable
+/// step estimate (a lower bound of the true limit) is the first suspect when a run diverges.
+std::string with_step_note(const std::string& what, const VerletOptions& opt, const SolveReport& rep) {
+  if (!(opt.dt > 0.0) || !(rep.stable_time_step > 0.0) || opt.dt <= rep.stable_time_step) return what;
+  char note[320];
+  std::snprintf(note, sizeof note,
+                "; solver.dt = %.4g s is %.3g times the stable step estimate %.4g s (2 / omega_max by Gershgorin, a "
+                "lower bound of the limit): a smaller dt, or dt: 0 for safety times the estimate",
+                opt.dt, opt.dt / rep.stable_time_step, rep.stable_time_step);
+  return what + note;
+}
+
 }  // namespace
 
 SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptions& opt,
@@ -278,11 +291,11 @@ SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptio
     rep.converged = false;
     rep.diverged = true;
     rep.diverged_at = e.step;
-    rep.failure = e.what();
+    rep.failure = with_step_note(e.what(), opt, rep);
   } catch (const SolveError& e) {
     if (progress) progress->finish();
     rep.converged = false;
-    rep.failure = e.what();
+    rep.failure = with_step_note(e.what(), opt, rep);
   }
   return rep;
 }

@@ -76,3 +76,18 @@ TEST_CASE("Verlet with the consistent and classical formulations conserves energ
     CHECK(defect < 1e-3 * work);
   }
 }
+
+TEST_CASE("a Verlet run that diverges with a given dt above the stable step estimate says so", "[cli][verlet]") {
+  // solver.dt = 1 s on the bar (estimate about 1.6e-7 s): NaN by step 11, and the message
+  // said nothing of the step; 3e-7 s (1.9 times the estimate) is stopped by the energy guard.
+  for (const std::string dt : {"1.0", "3.0e-7"}) {
+    const Outcome o = bar("verlet_dt_" + dt, "run", "--out out --set solver.dt=" + dt);
+    INFO(dt << ": " << o.out << o.err);
+    CHECK(o.exit_code == 3);
+    CHECK(o.err.find("times the stable step estimate") != std::string::npos);
+    CHECK(o.err.find("solver.dt = ") != std::string::npos);
+  }
+  const Outcome fine = bar("verlet_dt_fine", "run", "--out out --set solver.dt=1.0e-7 --set solver.steps=200");
+  INFO(fine.out << fine.err);
+  CHECK(fine.exit_code == 0);
+}
