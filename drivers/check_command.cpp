@@ -14,6 +14,7 @@
 #include "perinom/solvers/jacobian.hpp"
 #include "perinom/solvers/petsc.hpp"
 #include "stability_check.hpp"
+#include "thin_body_note.hpp"
 
 namespace perinom::cli {
 namespace {
@@ -86,6 +87,7 @@ int check(const Options& opt) {
     if (line.label == "dimension") dimension_note += line.text;
   std::printf("  dimension       %d%s\n", scene.dim, dimension_note.c_str());
   std::printf("  particles       %zu\n", p.cloud.size());
+  if (const std::string thin = thin_body_note(p); !thin.empty()) std::printf("  thin            %s\n", thin.c_str());
   std::printf("  bonds           %zu (%.1f per particle)\n", p.bonds, double(p.bonds) / p.cloud.size());
   if (scene.body_files.given()) print_body(p);
   for (const auto& line : plan)
