@@ -57,8 +57,9 @@ void report_small_strain(const Problem& p, const SmallStrainMeasure& m, io::Json
       std::printf("perinom: warning: the displacement gradient |grad u| reaches %.3g at particle %zu at (%s) "
                   "(summary.json largest_displacement_gradient); beyond about %g strains and rotations are not small, "
                   "and a small-strain model's answer is not the body's: check the units of the moduli, loads and "
-                  "lengths\n",
-                  m.value, m.particle, where.c_str(), kSmallGradientLimit);
+                  "lengths%s\n",
+                  m.value, m.particle, where.c_str(), kSmallGradientLimit,
+                  p.scene.plasticity ? " (model.kinematics: finite_rotation follows large rotations)" : "");
     return;
   }
   const double t = p.scene.geometry.thickness;
