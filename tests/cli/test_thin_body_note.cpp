@@ -1,5 +1,5 @@
 // A body few particles across one side resolves bending across it coarsely (a wall 3
-// particles thick bent 7-17% more than beam and plate-strip theory give, exit 0): check and
+// particles thick bent 14% more than the Kirchhoff plate, exit 0): check and
 // run say so, with the measured cantilever errors; a squat body gets no note.
 #include "../support/cli.hpp"
 
