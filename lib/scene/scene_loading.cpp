@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include <array>
 
@@ -92,15 +93,12 @@ std::vector<ParticleId> select_region(const Region& region, const Scene& s, cons
 
 namespace {
 
-/// One boundary item's share of the external force.
+/// One boundary item's share of the external force: its nonzero entries (dof, force).
 struct ItemLoad {
   const BoundarySpec* item;
-  std::vector<double> force;
+  std::vector<std::pair<std::size_t, double>> force;
 };
 
-/// A traction or pressure that acts only on components held at their particles (`at: layer`)
-/// goes whole into the supports' reactions and moves nothing: refused, naming the item and the
-/// support that takes it (a face-located hold passes a load on through its reconstruction).
 /// "stages.1.boundary.0" as messages name it: "stages[1].boundary[0]".
 std::string bracketed(const std::string& key) {
   std::string out;
@@ -117,19 +115,22 @@ std::string bracketed(const std::string& key) {
   return out;
 }
 
-void refuse_held_loads(const std::vector<ItemLoad>& loads, const Loading& load, const FaceOf& face_of) {
+/// A traction or pressure that acts only on components held at their particles (`at: layer`)
+/// goes whole into the supports' reactions and moves nothing: refused, naming the item and the
+/// support that takes it (a face-located hold passes a load on through its reconstruction).
+void refuse_held_loads(const std::vector<ItemLoad>& loads, const Loading& load, const FaceOf& face_of,
+                       std::size_t dofs) {
   if (loads.empty()) return;
-  std::vector<std::int64_t> held(loads.front().force.size(), -1);  // dof -> its constraint, or -1
+  std::vector<std::int64_t> held(dofs, -1);  // dof -> its constraint, or -1
   for (std::size_t k = 0; k < load.fixed.size(); ++k)
     if (face_of.find(load.fixed[k]) == face_of.end()) held[load.fixed[k]] = static_cast<std::int64_t>(k);
   for (const ItemLoad& l : loads) {
     double total = 0.0, absorbed = 0.0;
     int support = -1;
-    for (std::size_t dof = 0; dof < l.force.size(); ++dof) {
-      if (l.force[dof] == 0.0) continue;
-      total += std::abs(l.force[dof]);
+    for (const auto& [dof, f] : l.force) {
+      total += std::abs(f);
       if (held[dof] < 0) continue;
-      absorbed += std::abs(l.force[dof]);
+      absorbed += std::abs(f);
       if (!load.support.empty() && load.support[held[dof]] >= 0) support = load.support[held[dof]];
     }
     if (total == 0.0 || absorbed < total) continue;
@@ -191,10 +192,12 @@ Loading make_loading(const Scene& s, const std::vector<BoundarySpec>& boundary, 
         add_side_traction(side, ids, side_load(side, std::nullopt, *b.pressure, d).data(), cloud, data.trace,
                           load.pressure_force);
     }
-    for (std::size_t k = 0; k < own.size(); ++k) load.force[k] += own[k];
-    loads.push_back({&b, std::move(own)});
+    ItemLoad item{&b, {}};
+    for (std::size_t k = 0; k < own.size(); ++k)
+      if (own[k] != 0.0) load.force[k] += own[k], item.force.emplace_back(k, own[k]);
+    loads.push_back(std::move(item));
   }
-  refuse_held_loads(loads, load, face_of);
+  refuse_held_loads(loads, load, face_of, cloud.size() * std::size_t(d));
   return load;
 }
 
