@@ -1,7 +1,7 @@
 #pragma once
 // A body few particles across one side resolves bending across it coarsely, and nothing in
 // the answer shows it: a wall 3 particles thick bent 14% more than the Kirchhoff plate,
-// with exit 0 and a converged residual. Run and check say so before the solve.
+// with exit 0 and a converged residual. Run and check say so (and where) before the solve.
 #include <string>
 
 #include "perinom/scene/problem.hpp"
@@ -11,9 +11,10 @@ namespace perinom::cli {
 /// Below this many particles across its thinnest side a body gets the note.
 inline constexpr int kThinBodyParticles = 8;
 
-/// "" or the note (without a prefix) for a correspondence body whose bounding box is fewer
-/// than kThinBodyParticles particles across along some axis, with the measured cantilever
-/// errors at 4, 8 and 16 particles across.
+/// "" or the note (without a prefix) for a correspondence body fewer than kThinBodyParticles
+/// particles across somewhere (thinnest_wall on its facets, a lattice's computed here when
+/// the formulation keeps none: a ligament beside a hole, a tube's wall; a point file without
+/// facets: its bounding box), with the measured cantilever errors at 4, 8 and 16 across.
 std::string thin_body_note(const Problem& p);
 
 }  // namespace perinom::cli

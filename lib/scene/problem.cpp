@@ -281,6 +281,7 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   const CorrespondenceOptions opt = correspondence_options(s);
   Surface surface;
   BoundaryFacets facets = body_facets(s, body, p);
+  p.facets = facets;
   if (opt.formulation != Formulation::classical && opt.formulation != Formulation::consistent) {
     // E: within 2 delta of the surface (THEORY sec. 5); the strong form makes E everything.
     const double delta = *std::max_element(families.support.begin(), families.support.end());

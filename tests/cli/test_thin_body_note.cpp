@@ -1,6 +1,7 @@
 // A body few particles across one side resolves bending across it coarsely (a wall 3
 // particles thick bent 14% more than the Kirchhoff plate, exit 0): check and
-// run say so, with the measured cantilever errors; a squat body gets no note.
+// run say so, with the measured errors and where; a squat body gets no note, a ligament
+// beside a hole in a squat body does.
 #include "../support/cli.hpp"
 
 using namespace cli_test;
@@ -25,4 +26,21 @@ TEST_CASE("a body fewer than 8 particles across gets a note from check and run; 
   const Outcome squat = perinom(dir, "check squat.yaml");
   CHECK(squat.exit_code == 0);
   CHECK(squat.out.find("particles across") == std::string::npos);
+}
+
+TEST_CASE("a ligament 3 particles across between a hole and a face gets the note, where a bounding box sees 20; a small hole none", "[cli]") {
+  const std::string plate = with(with(tiny_scene, "max: [0.01, 0.01]}", "max: [0.02, 0.02]}\n  holes:\n    - {center: [0.01, 0.012], radius: 0.005}"),
+                                 "point: [0.005, 0.01]", "point: [0.01, 0.02]");
+  ScratchDir dir;
+  std::ofstream(dir.path / "ligament.yaml") << plate;
+  // A small hole in the middle leaves 8 across everywhere: no note.
+  std::ofstream(dir.path / "whole.yaml") << with(plate, "{center: [0.01, 0.012], radius: 0.005}", "{center: [0.01, 0.01], radius: 0.002}");
+  const Outcome check = perinom(dir, "check ligament.yaml");
+  INFO(check.out << check.err);
+  CHECK(check.exit_code == 0);
+  CHECK(check.out.find("the body is 3 particles across along y from (") != std::string::npos);
+  const Outcome whole = perinom(dir, "check whole.yaml");
+  INFO(whole.out << whole.err);
+  CHECK(whole.exit_code == 0);
+  CHECK(whole.out.find("particles across") == std::string::npos);
 }

@@ -45,9 +45,10 @@ struct Problem {
   std::size_t mesh_elements = 0;
   double mean_size = 0.0;
   double facet_defect = 0.0;
-  /// build_problem_frame only (the ranks' parts take their share): the boundary facets, by
-  /// particle of the whole cloud, that the loads and the consistent formulation see (a body
-  /// from files: its own; a lattice: lattice_facets under the consistent formulation).
+  /// The boundary facets, by particle of the whole cloud, that the loads and the consistent
+  /// formulation see (a body from files: its own; a lattice: lattice_facets under the
+  /// consistent formulation, else none): the ranks' parts take their share of the frame's,
+  /// and the thin-body note measures the body's thickness on them.
   BoundaryFacets facets;
 
   TangentModel& physics() { return *model; }
