@@ -183,11 +183,23 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
       sample.iteration = rep.iterations, sample.load_step = step, sample.residual = rep.residual;
       progress->update(sample);
     }
+    // A stalled line search is accepted where the run's own measure (ADR's relative residual,
+    // reported) meets the tolerance: KINSOL tests the largest entry over the step's first
+    // one, which rounding can hold above it (the plane-strain cantilever at nu = 0.499,
+    // 16 particles thick: 2.1e-11 against 1e-10, KINSOL stopped).
     const bool ok = flag == KIN_SUCCESS || flag == KIN_INITIAL_GUESS_OK ||
-                    (flag == KIN_STEP_LT_STPTOL && rep.residual < 1e-6);
+                    (flag == KIN_STEP_LT_STPTOL && rep.residual < 1e-6) ||
+                    (flag == KIN_LINESEARCH_NONCONV && rep.residual <= opt.tolerance);
     if (!ok) {
+      char at[160];
+      std::snprintf(at, sizeof at, " at a residual of %.3e (solver.tolerance %.1e)", rep.residual, opt.tolerance);
       rep.failure = "Newton: KINSOL stopped in load step " + std::to_string(step) + " with flag " +
-                    std::to_string(flag) + " (" + KINGetReturnFlagName(flag) + ")";
+                    std::to_string(flag) + " (" + KINGetReturnFlagName(flag) + ")" + at;
+      // A line search that stalls above the tolerance: the residual at its rounding floor.
+      if (flag == KIN_LINESEARCH_NONCONV)
+        rep.failure += ": no step along Newton's direction lowers the residual, which near the tolerance is rounding in "
+                       "a badly conditioned stiffness (a nearly incompressible material: nu near 1/2); a looser "
+                       "solver.tolerance, or solver.type: direct for a linear problem (it refines on its factor)";
       break;
     }
     if (opt.after_step) opt.after_step(step, u, iterations, rep.residual);

@@ -119,3 +119,25 @@ TEST_CASE("a direct solve with a rigid mode left free stops with exit 3, naming 
   CHECK(o.err.find("not positive definite") != std::string::npos);
   CHECK(test_support::slurp(dir.path / "out" / "summary.json").find("\"status\": \"not_converged\"") != std::string::npos);
 }
+
+TEST_CASE("the direct solve refines on its factor while the residual is above the tolerance, never making it worse",
+          "[solvers][direct]") {
+  // A nearly incompressible block (lambda / mu = 5,000): K_T's rounding is what refinement
+  // corrects. With a tolerance of 1 the first solve is kept (one iteration); with one no
+  // solve can meet, all three refinements are taken and the residual is no larger.
+  const std::string soft = cli_test::with(block, "nu: 0.3", "nu: 0.4999");
+  auto solve = [&](const std::string& tolerance) {
+    Problem p = build_problem(parse_scene(soft + "solver: {type: direct, tolerance: " + tolerance + "}\n", "d.yaml"));
+    std::vector<double> u(p.physics().dofs(), 0.0);
+    return solve_problem(p, u);
+  };
+  const SolveReport once = solve("1.0"), all = solve("1.0e-300"), standard = solve("1.0e-8");
+  CHECK(once.converged);
+  CHECK(once.iterations == 1);
+  CHECK_FALSE(all.converged);
+  CHECK(all.iterations == 4);
+  CHECK(all.residual <= once.residual);
+  CHECK(all.failure.find("residual") != std::string::npos);
+  INFO("first residual " << once.residual << ", refined " << all.residual);
+  CHECK(standard.converged);
+}

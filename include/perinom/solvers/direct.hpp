@@ -20,8 +20,11 @@ struct DirectOptions {
 };
 
 /// u (resized to model.dofs()) at full load. The report: converged, residual (the check
-/// above), iterations = 1, and `failure` naming what went wrong (K_T not positive definite:
-/// a non-symmetric formulation or a rigid mode left free). Throws InputError for a model
+/// above), iterations = 1 plus the steps of iterative refinement on the same factor (up to
+/// 3, taken only while the residual is above the tolerance: rounding in a badly conditioned
+/// K_T, e.g. nu near 1/2), and `failure` naming what went wrong (K_T not positive definite:
+/// a non-symmetric formulation or a rigid mode left free; a residual still above the
+/// tolerance). Throws InputError for a model
 /// with history or collocated constraints.
 SolveReport solve_direct(TangentModel& model, const Loading& loading, std::vector<double>& u,
                          const DirectOptions& options = {}, Progress* progress = nullptr);
