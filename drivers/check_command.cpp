@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "locking_warning.hpp"
 #include "memory_estimate.hpp"
 #include "perinom/core/error.hpp"
 #include "perinom/distributed/graph_partition.hpp"
@@ -88,6 +89,8 @@ int check(const Options& opt) {
   std::printf("  dimension       %d%s\n", scene.dim, dimension_note.c_str());
   std::printf("  particles       %zu\n", p.cloud.size());
   if (const std::string thin = thin_body_note(p); !thin.empty()) std::printf("  thin            %s\n", thin.c_str());
+  if (const std::string locking = locking_warning(p); !locking.empty())
+    std::printf("  locking         warning: %s\n", locking.c_str());
   std::printf("  bonds           %zu (%.1f per particle)\n", p.bonds, double(p.bonds) / p.cloud.size());
   if (scene.body_files.given()) print_body(p);
   for (const auto& line : plan)

@@ -22,6 +22,7 @@
 #include "difference.hpp"
 #include "damaged_newton_check.hpp"
 #include "load_path_run.hpp"
+#include "locking_warning.hpp"
 #include "memory_estimate.hpp"
 #include "output_folder.hpp"
 #include "reactions_output.hpp"
@@ -149,6 +150,8 @@ int run(const Options& opt) {
                     ? "pressures follow the deformed surface; traction vectors stay dead loads (reference area)"
                     : "tractions and pressures stay nominal (model.follower_pressure: false)");
   if (const std::string thin = thin_body_note(p); !thin.empty()) std::printf("perinom: note: %s\n", thin.c_str());
+  if (const std::string locking = locking_warning(p); !locking.empty())
+    std::printf("perinom: warning: %s\n", locking.c_str());
   if (scene.damage && scene.damage->fracture_energy > 0.0)
     std::printf("perinom: note: damage.fracture_energy: the broken bonds dissipate G_f per unit crack area; a "
                 "notched beam's peak still moved 5%% over a halving of the spacing at horizon 3.015 dx "

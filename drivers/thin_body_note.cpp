@@ -37,38 +37,44 @@ std::string direction(const double* n, int d) {
 
 }  // namespace
 
-std::string thin_body_note(const Problem& p) {
-  if (p.scene.model.type != "correspondence" || p.cloud.size() == 0) return "";
+ThinPlace thinnest_place(const Problem& p, int below) {
+  ThinPlace place;
+  if (p.scene.model.type != "correspondence" || p.cloud.size() == 0) return place;
   const int d = p.cloud.dim;
   const BoundaryFacets facets =
       !p.facets.empty() || p.scene.body_files.given() ? p.facets : lattice_facets(p.scene.geometry, p.cloud);
   char where[256];
-  int across = 0;
   if (facets.empty()) {  // a point file without facets: its bounding box
     const auto [n, axis] = thinnest_box_axis(p.cloud);
-    if (n >= kThinBodyParticles) return "";
-    across = n;
+    if (n >= below) return place;
+    place.across = n;
     std::snprintf(where, sizeof where, "along %c (its bounding box; the point file gives no facets)", "xyz"[axis]);
   } else {
-    const ThinSpot spot = thinnest_wall(facets, p.cloud, p.scene.geometry.thickness, kThinBodyParticles - 0.5);
-    if (!spot.found()) return "";
-    across = static_cast<int>(std::lround(spot.across));
+    const ThinSpot spot = thinnest_wall(facets, p.cloud, p.scene.geometry.thickness, below - 0.5);
+    if (!spot.found()) return place;
+    place.across = static_cast<int>(std::lround(spot.across));
     const double* c = &facets.centroid[spot.facet * d];
+    const std::string along = direction(&facets.normal[spot.facet * d], d);
     if (d == 2)
-      std::snprintf(where, sizeof where, "along %s from (%.6g, %.6g)", direction(&facets.normal[spot.facet * d], d).c_str(),
-                    c[0], c[1]);
+      std::snprintf(where, sizeof where, "along %s from (%.6g, %.6g)", along.c_str(), c[0], c[1]);
     else
-      std::snprintf(where, sizeof where, "along %s from (%.6g, %.6g, %.6g)",
-                    direction(&facets.normal[spot.facet * d], d).c_str(), c[0], c[1], c[2]);
+      std::snprintf(where, sizeof where, "along %s from (%.6g, %.6g, %.6g)", along.c_str(), c[0], c[1], c[2]);
   }
+  place.where = where;
+  return place;
+}
+
+std::string thin_body_note(const Problem& p) {
+  const ThinPlace place = thinnest_place(p, kThinBodyParticles);
+  if (place.where.empty()) return "";
   char buf[768];
   std::snprintf(buf, sizeof buf,
                 "the body is %d particles across %s: fields that vary across so few (bending, a stress "
                 "concentration) are resolved coarsely (a cantilever's tip deflection, consistent formulation: "
                 "+5.3%% in 2-D and +3.9%% in 3-D at 4 across, +2.3%% at 8, +0.7%% at 16; a pressurized cylinder's inner "
-                "radial displacement, on a mesh: +12.8%% at 5 across its wall, +2.6%% at 10; docs/verification/README.md): "
-                "compare a finer dx",
-                across, where);
+                "radial displacement at 45 degrees, on a mesh: +12.8%% at 5 across its wall, +2.6%% at 10; "
+                "docs/verification/README.md): compare a finer dx",
+                place.across, place.where.c_str());
   return buf;
 }
 

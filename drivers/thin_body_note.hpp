@@ -11,10 +11,19 @@ namespace perinom::cli {
 /// Below this many particles across its thinnest side a body gets the note.
 inline constexpr int kThinBodyParticles = 8;
 
+/// The thinnest place of a correspondence body fewer than `below` particles across (none:
+/// `where` empty): its particles across and where ("along y from (x, y)"), measured by
+/// thinnest_wall on the body's facets (a lattice's computed here when the formulation keeps
+/// none: a ligament beside a hole, a tube's wall; a point file without facets: its
+/// bounding box).
+struct ThinPlace {
+  int across = 0;
+  std::string where;
+};
+ThinPlace thinnest_place(const Problem& p, int below);
+
 /// "" or the note (without a prefix) for a correspondence body fewer than kThinBodyParticles
-/// particles across somewhere (thinnest_wall on its facets, a lattice's computed here when
-/// the formulation keeps none: a ligament beside a hole, a tube's wall; a point file without
-/// facets: its bounding box), with the measured cantilever errors at 4, 8 and 16 across.
+/// particles across somewhere (thinnest_place), with the measured errors at 4, 8 and 16 across.
 std::string thin_body_note(const Problem& p);
 
 }  // namespace perinom::cli

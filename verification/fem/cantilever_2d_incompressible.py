@@ -73,6 +73,7 @@ def main():
             rows += [f"{nu},{etype},{h:.6g},{uy:.7e}" for h, uy in zip(H_LIST, f)] + [f"{nu},{etype},0,{lim:.7e}"]
             print(f"nu = {nu}, {etype}: tip-centre u_y {', '.join(f'{x:.6e}' for x in f)} m; order {p:.2f}, "
                   f"extrapolated {lim:.7e} m; Timoshenko {timoshenko(nu):.6e} m", flush=True)
+    os.makedirs(a.out, exist_ok=True)
     cc.write_csv(os.path.join(a.out, "cantilever_2d_incompressible.csv"), "nu,element,h_m,tip_center_uy_m", rows)
     print("wrote cantilever_2d_incompressible.csv in", a.out)
 

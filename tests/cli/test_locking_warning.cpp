@@ -1,0 +1,33 @@
+// A nearly incompressible body few particles across locks in bending (the plane-strain
+// cantilever 4 particles thick at nu = 0.499: 70% too stiff, exit 0): check and run warn,
+// naming nu, lambda / mu and where the body is thin. Plane stress (no incompressibility in
+// the plane), nu = 0.3 and classical with operator_order 2 (which did not lock) get no
+// warning.
+#include "../support/cli.hpp"
+
+using namespace cli_test;
+
+TEST_CASE("a nearly incompressible body few particles across gets a locking warning from check and run", "[cli]") {
+  const std::string soft = with(tiny_scene, "nu: 0.25", "nu: 0.499");
+  ScratchDir dir;
+  std::ofstream(dir.path / "soft.yaml") << soft;
+  std::ofstream(dir.path / "stiff.yaml") << tiny_scene;
+  std::ofstream(dir.path / "stress.yaml") << with(soft, "density: 1000.0", "density: 1000.0\n  plane: stress");
+  std::ofstream(dir.path / "classical.yaml") << soft + "model: {formulation: classical, operator_order: 2}\n";
+  const Outcome check = perinom(dir, "check soft.yaml");
+  INFO(check.out << check.err);
+  CHECK(check.exit_code == 0);
+  CHECK(check.out.find("locking         warning: material.nu = 0.499 is nearly incompressible (lambda / mu = 499) and "
+                       "the body is 10 particles across along") != std::string::npos);
+  CHECK(check.out.find("model.formulation consistent with operator_order 2 locks in bending") != std::string::npos);
+  const Outcome run = perinom(dir, "run soft.yaml --out out");
+  INFO(run.out << run.err);
+  CHECK(run.exit_code == 0);
+  CHECK(run.out.find("perinom: warning: material.nu = 0.499 is nearly incompressible") != std::string::npos);
+  for (const char* quiet : {"stiff.yaml", "stress.yaml", "classical.yaml"}) {
+    const Outcome o = perinom(dir, std::string("check ") + quiet);
+    INFO(quiet << ": " << o.out << o.err);
+    CHECK(o.exit_code == 0);
+    CHECK(o.out.find("locking") == std::string::npos);
+  }
+}
