@@ -2,7 +2,8 @@
 
 #include <unistd.h>
 
-#include <filesystem>
+#include <algorithm>
+#include <cstdio>
 #include <fstream>
 
 #include "perinom/core/error.hpp"
@@ -12,19 +13,28 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Removes the files is_run_output names (or only the .tmp ones) but those in `spare`;
-/// returns how many.
-int remove_outputs(const std::string& dir, bool only_tmp, const std::set<std::string>& spare = {}) {
+bool ends_with(const std::string& s, const std::string& end) {
+  return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
+}
+
+/// The names an earlier run's manifest lists (none without one).
+std::set<std::string> read_manifest(const std::string& dir) {
+  std::set<std::string> names;
+  std::ifstream f(dir + "/" + RunFolder::manifest);
+  for (std::string line; std::getline(f, line);)
+    if (!line.empty() && line[0] != '#') names.insert(line);
+  return names;
+}
+
+/// Removes the .tmp files of run outputs; returns how many.
+int remove_temporaries(const std::string& dir) {
   int removed = 0;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     const std::string name = entry.path().filename().string();
-    const bool tmp = name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0;
-    if (name == RunFolder::marker || !entry.is_regular_file(ec) || !is_run_output(name) || (only_tmp && !tmp) ||
-        spare.count(name))
-      continue;
     std::error_code gone;
-    if (fs::remove(entry.path(), gone)) ++removed;
+    if (ends_with(name, ".tmp") && is_run_output(name) && entry.is_regular_file(gone) && fs::remove(entry.path(), gone))
+      ++removed;
   }
   return removed;
 }
@@ -32,14 +42,11 @@ int remove_outputs(const std::string& dir, bool only_tmp, const std::set<std::st
 }  // namespace
 
 bool is_run_output(const std::string& file_name) {
-  const auto ends = [](const std::string& s, const std::string& end) {
-    return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
-  };
   std::string name = file_name;
-  if (ends(name, ".tmp")) name.resize(name.size() - 4);
+  if (ends_with(name, ".tmp")) name.resize(name.size() - 4);
   if (name == "summary.json" || name == "history.csv" || name == "load_steps.csv" || name == "checkpoint.bin") return true;
-  if (ends(name, ".vtu") || ends(name, ".pvtu") || ends(name, ".pvd")) return true;
-  if (!ends(name, ".csv")) return false;
+  if (ends_with(name, ".vtu") || ends_with(name, ".pvtu") || ends_with(name, ".pvd")) return true;
+  if (!ends_with(name, ".csv")) return false;
   if (name.rfind("probe_", 0) == 0) return true;
   // A snapshot's CSV: NAME_ and at least six digits (the .vtu's index).
   const std::string stem = name.substr(0, name.size() - 4);
@@ -52,6 +59,11 @@ RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& sp
   std::error_code ec;
   fs::create_directories(dir_, ec);
   const std::string path = dir_ + "/" + marker;
+  // What the earlier run recorded: its manifest, or, killed, the start its marker keeps.
+  const std::set<std::string> earlier = read_manifest(dir_);
+  std::error_code none;
+  const bool killed = fs::is_regular_file(path, none);
+  const fs::file_time_type killed_at = killed ? fs::last_write_time(path, none) : fs::file_time_type::max();
   {
     std::ofstream f(path, std::ios::trunc);
     f << "perinom run in progress (process " << ::getpid()
@@ -59,13 +71,63 @@ RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& sp
     if (ec || !f.flush())
       throw InputError("--out " + dir_ + ": the output folder cannot be created or written");
   }
-  removed_ = remove_outputs(dir_, keep, spare);
+  start_ = fs::last_write_time(path, ec);
+  removed_ = remove_temporaries(dir_);
+  for (const auto& entry : fs::directory_iterator(dir_, ec)) {
+    const std::string name = entry.path().filename().string();
+    std::error_code e;
+    if (!entry.is_regular_file(e) || !is_run_output(name) || ends_with(name, ".tmp")) continue;
+    if (spare.count(name)) {
+      carried_.insert(name);
+      continue;
+    }
+    const bool written = earlier.count(name) || (killed && !none && entry.last_write_time(e) >= killed_at && !e);
+    if (!written) foreign_.push_back(name);
+    else if (keep) carried_.insert(name);
+    else if (fs::remove(entry.path(), e)) ++removed_;
+  }
+  std::sort(foreign_.begin(), foreign_.end());
 }
 
 RunFolder::~RunFolder() {
-  remove_outputs(dir_, true);
+  remove_temporaries(dir_);
+  // The manifest: this run's outputs (written since its marker) and the names it carries.
+  std::set<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir_, ec)) {
+    const std::string name = entry.path().filename().string();
+    std::error_code e;
+    if (!entry.is_regular_file(e) || !is_run_output(name) || ends_with(name, ".tmp")) continue;
+    if (carried_.count(name) || (entry.last_write_time(e) >= start_ && !e)) names.insert(name);
+  }
+  const std::string file = dir_ + "/" + manifest, tmp = file + ".tmp";
   std::error_code ignored;
+  if (names.empty()) {
+    fs::remove(file, ignored);
+  } else {
+    {
+      std::ofstream f(tmp, std::ios::trunc);
+      f << "# the files a perinom run wrote in this folder: the next run here removes them (--keep keeps them),\n"
+           "# and no other file\n";
+      for (const auto& n : names) f << n << '\n';
+    }
+    fs::rename(tmp, file, ignored);
+    fs::remove(tmp, ignored);
+  }
   fs::remove(dir_ + "/" + marker, ignored);
+}
+
+void RunFolder::announce() const {
+  if (removed_ > 0)
+    std::printf("perinom: removed %d files of an earlier run from %s (--keep keeps them)\n", removed_, dir_.c_str());
+  if (foreign_.empty()) return;
+  std::string list;
+  const std::size_t shown = std::min<std::size_t>(foreign_.size(), 5);
+  for (std::size_t k = 0; k < shown; ++k) list += (k ? ", " : "") + foreign_[k];
+  if (foreign_.size() > shown) list += " and " + std::to_string(foreign_.size() - shown) + " more";
+  std::printf("perinom: warning: --out %s holds %zu file(s) named like perinom's output that no perinom run recorded "
+              "writing there (%s): left in place, and not this run's\n",
+              dir_.c_str(), foreign_.size(), list.c_str());
 }
 
 }  // namespace perinom::cli

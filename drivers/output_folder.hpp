@@ -1,23 +1,33 @@
 #pragma once
 // The output folder of `perinom run`: it can always be told apart whether it holds one
-// finished run, a run still going or killed, or nothing of perinom's.
-//   - At start the folder is created and checked writable, the marker run.incomplete is
-//     written, and the files an earlier run left (summary.json, history.csv, load_steps.csv,
-//     *.vtu, *.pvtu, *.pvd, probe_*.csv, snapshot CSVs NAME_NNNNNN.csv, checkpoint.bin, and *.tmp
-//     of these) are removed, unless --keep; a run resumed in place (restart.hpp) spares
-//     the files of the run it continues.
+// finished run, a run still going or killed, or nothing of perinom's; and a run removes
+// only files a perinom run wrote there, never a user's own.
+//   - At start the folder is created and checked writable, and the marker run.incomplete is
+//     written. The files an earlier run wrote are removed, unless --keep: those its
+//     manifest perinom.files lists, and, after a killed run (its marker left, no manifest),
+//     those named as a run's output (summary.json, history.csv, load_steps.csv, *.vtu,
+//     *.pvtu, *.pvd, probe_*.csv, snapshot CSVs NAME_NNNNNN.csv, checkpoint.bin) written
+//     since its marker. Any *.tmp of these goes too. A run resumed in place (restart.hpp)
+//     spares the files of the run it continues. Files named like a run's output that no run
+//     recorded (a reference.vtu of the user's, a folder of an older perinom) are left in
+//     place and listed (foreign()).
 //   - summary.json is written last, with its "status".
-//   - The marker and any .tmp file are removed on every way out the program controls (the
-//     destructor runs on success, on exit codes 1 to 4 alike); only a kill leaves them.
+//   - On every way out the program controls (the destructor runs on success, on exit codes
+//     1 to 4 alike) the manifest is written (this run's outputs: written since its marker,
+//     the spared files, and with --keep the earlier manifest's), and the marker and any
+//     .tmp file are removed; only a kill leaves them.
+#include <filesystem>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace perinom::cli {
 
 class RunFolder {
  public:
-  /// The marker's file name.
+  /// The marker's and the manifest's file names.
   static constexpr const char* marker = "run.incomplete";
+  static constexpr const char* manifest = "perinom.files";
 
   /// Prepares `dir` as above, sparing the files named in `spare`. @throws InputError naming
   /// --out DIR if it cannot be written.
@@ -29,10 +39,17 @@ class RunFolder {
   const std::string& path() const { return dir_; }
   /// How many files of an earlier run were removed at start.
   int removed() const { return removed_; }
+  /// The files named like a run's output that no run recorded writing, left in place.
+  const std::vector<std::string>& foreign() const { return foreign_; }
+  /// Prints what the start did: the files removed, the foreign ones left.
+  void announce() const;
 
  private:
   std::string dir_;
   int removed_ = 0;
+  std::vector<std::string> foreign_;
+  std::set<std::string> carried_;  ///< names the manifest keeps whatever their time: spared, kept
+  std::filesystem::file_time_type start_;
 };
 
 /// Whether a file name in an output folder is one `perinom run` writes (or its .tmp).

@@ -131,9 +131,7 @@ int run(const Options& opt) {
   const std::string dir = !opt.out.empty() ? opt.out : restart ? opt.restart : "out/" + scene.name;
   const bool in_place = restart && restart->in_place(dir);
   const RunFolder folder(dir, opt.keep, in_place ? restart->files() : std::set<std::string>{});
-  if (folder.removed() > 0)
-    std::printf("perinom: removed %d files of an earlier run from %s (--keep keeps them)\n", folder.removed(),
-                dir.c_str());
+  folder.announce();
   if (restart) restart->bring_snapshots(dir);
   std::printf("perinom: %s: building particles, families and operators\n", scene.name.c_str());
   std::fflush(stdout);

@@ -115,8 +115,7 @@ int run_distributed(const Options& opt) {
   std::optional<RunFolder> folder;
   if (root) {
     folder.emplace(dir, opt.keep);
-    if (folder->removed() > 0)
-      std::printf("perinom: removed %d files of an earlier run from %s (--keep keeps them)\n", folder->removed(), dir.c_str());
+    folder->announce();
   }
   barrier();
   std::printf("perinom: %s: building particles, families and operators on %d ranks\n", scene.name.c_str(), world.size);

@@ -1,5 +1,5 @@
 // The output folder cannot mislead: an earlier run's files are removed at start (unless
-// --keep), the marker run.incomplete exists exactly while a run is going (a killed run
+// --keep), and only those (a user's reference.vtu stays, named in a warning); the marker run.incomplete exists exactly while a run is going (a killed run
 // leaves it, and its history so far), summary.json carries the status, and no .tmp file
 // survives a run that ends by itself, however it ends.
 #include "../support/background_run.hpp"
@@ -53,8 +53,8 @@ TEST_CASE("a second run in a folder leaves none of an earlier run's files", "[cl
     INFO("stderr: " << o.err);
     REQUIRE(o.exit_code == 0);
     CHECK(o.out.find("removed") != std::string::npos);
-    const std::vector<std::string> expected = {"history.csv", "notes.txt",     "probe_mid.csv",
-                                               "summary.json", "tiny.pvd", "tiny_000000.vtu"};
+    const std::vector<std::string> expected = {"history.csv",  "notes.txt", "perinom.files",  "probe_mid.csv",
+                                               "summary.json", "tiny.pvd",  "tiny_000000.vtu"};
     CHECK(files_in(out) == expected);
   }
   SECTION("with --keep: the earlier files stay, the stale temporaries and marker go") {
@@ -108,4 +108,52 @@ TEST_CASE("a killed run leaves its marker and no summary: it cannot pass for a f
   CHECK(history.rfind("iteration,load_factor,residual", 0) == 0);
   CHECK(std::count(history.begin(), history.end(), '\n') >= 2);
   CHECK(history.back() == '\n');
+}
+
+TEST_CASE("a run removes only what a perinom run wrote: a user's files named like outputs stay, and are named", "[cli]") {
+  // `--out .` in a project folder removed a reference.vtu and a probe_lab.csv of the user's.
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  const fs::path out = dir.path / "out";
+  fs::create_directories(out);
+  std::ofstream(out / "reference.vtu") << "mine";
+  std::ofstream(out / "probe_lab.csv") << "mine";
+  for (int run = 1; run <= 2; ++run) {
+    INFO("run " << run);
+    const Outcome o = perinom(dir, "run scene.yaml --out out");
+    INFO(o.out << o.err);
+    REQUIRE(o.exit_code == 0);
+    CHECK(slurp(out / "reference.vtu") == "mine");
+    CHECK(slurp(out / "probe_lab.csv") == "mine");
+    CHECK(o.out.find("perinom: warning: --out out holds 2 file(s) named like perinom's output that no perinom run "
+                     "recorded writing there (probe_lab.csv, reference.vtu)") != std::string::npos);
+    // The second run removes the first one's 5 files (summary, history, probe, .pvd, .vtu), which its manifest lists.
+    CHECK((o.out.find("removed 5 files of an earlier run") != std::string::npos) == (run == 2));
+    const std::string manifest = slurp(out / "perinom.files");
+    CHECK(manifest.find("tiny_000000.vtu\n") != std::string::npos);
+    CHECK(manifest.find("reference.vtu") == std::string::npos);
+  }
+}
+
+TEST_CASE("after a killed run the files written since its marker are removed; older ones stay", "[cli]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  const fs::path out = dir.path / "out";
+  fs::create_directories(out);
+  // A user's file from an hour ago, the killed run's marker from ten minutes ago and its
+  // snapshot from five (times set, so that no clock tick can tie them).
+  std::ofstream(out / "old_000001.vtu") << "mine";
+  std::ofstream(out / "run.incomplete") << "perinom run in progress";
+  std::ofstream(out / "tiny_000007.vtu") << "killed";
+  const auto now = fs::file_time_type::clock::now();
+  fs::last_write_time(out / "old_000001.vtu", now - std::chrono::hours(1));
+  fs::last_write_time(out / "run.incomplete", now - std::chrono::minutes(10));
+  fs::last_write_time(out / "tiny_000007.vtu", now - std::chrono::minutes(5));
+  const Outcome o = perinom(dir, "run scene.yaml --out out");
+  INFO(o.out << o.err);
+  REQUIRE(o.exit_code == 0);
+  CHECK_FALSE(fs::exists(out / "tiny_000007.vtu"));
+  CHECK(slurp(out / "old_000001.vtu") == "mine");
+  CHECK(o.out.find("(old_000001.vtu): left in place") != std::string::npos);
+  require_finished_folder(out);
 }
