@@ -28,4 +28,10 @@ std::string locking_warning(const Problem& p) {
   return buf;
 }
 
+void print_body_notes(const Problem& p) {
+  if (const std::string thin = thin_body_note(p); !thin.empty()) std::printf("perinom: note: %s\n", thin.c_str());
+  if (const std::string locking = locking_warning(p); !locking.empty())
+    std::printf("perinom: warning: %s\n", locking.c_str());
+}
+
 }  // namespace perinom::cli

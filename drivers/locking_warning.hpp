@@ -20,4 +20,8 @@ inline constexpr int kLockingParticles = 16;
 /// not lock in the measurements the warning quotes).
 std::string locking_warning(const Problem& p);
 
+/// Prints, at the start of a run (serial, or the root of a distributed one), the thin-body
+/// note and the locking warning that apply to the problem (`perinom: note:` / `warning:`).
+void print_body_notes(const Problem& p);
+
 }  // namespace perinom::cli

@@ -1,10 +1,14 @@
 #include "output_folder.hpp"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdlib>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 
 #include "perinom/core/error.hpp"
 
@@ -39,6 +43,31 @@ int remove_temporaries(const std::string& dir) {
   return removed;
 }
 
+/// The process a marker names ("... (process 1234) ..."), 0 if none.
+long marker_process(const std::string& path) {
+  std::ifstream f(path);
+  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  const std::size_t at = text.find("(process ");
+  return at == std::string::npos ? 0 : std::atol(text.c_str() + at + 9);
+}
+
+/// The first line of /proc/PID/comm ("" if it cannot be read).
+std::string command_of(const std::string& pid) {
+  std::ifstream f("/proc/" + pid + "/comm");
+  std::string name;
+  std::getline(f, name);
+  return name;
+}
+
+/// Whether process `pid` is alive and a perinom (its command name this one's; one whose name
+/// cannot be read counts as a perinom: refusing is the safe error, and the message says how
+/// to go on).
+bool running_perinom(long pid) {
+  if (pid <= 0 || pid == ::getpid() || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno != EPERM)) return false;
+  const std::string other = command_of(std::to_string(pid));
+  return other.empty() || other == command_of("self");
+}
+
 }  // namespace
 
 bool is_run_output(const std::string& file_name) {
@@ -63,6 +92,13 @@ RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& sp
   const std::set<std::string> earlier = read_manifest(dir_);
   std::error_code none;
   const bool killed = fs::is_regular_file(path, none);
+  // A marker of a run going on: two runs in one folder would mix their files (a sweep of
+  // `--set` runs sharing the default out/NAME: the second removed the first's history and
+  // marker, and the folder ended with one run's summary and the other's history).
+  if (const long pid = killed ? marker_process(path) : 0; running_perinom(pid))
+    throw InputError("--out " + dir_ + ": another perinom run (process " + std::to_string(pid) +
+                     ") is writing this folder: give this run another --out, or wait for that one to end (if no "
+                     "perinom runs, remove " + path + ")");
   const fs::file_time_type killed_at = killed ? fs::last_write_time(path, none) : fs::file_time_type::max();
   {
     std::ofstream f(path, std::ios::trunc);

@@ -2,7 +2,8 @@
 // The output folder of `perinom run`: it can always be told apart whether it holds one
 // finished run, a run still going or killed, or nothing of perinom's; and a run removes
 // only files a perinom run wrote there, never a user's own.
-//   - At start the folder is created and checked writable, and the marker run.incomplete is
+//   - At start the folder is created and checked writable, refused while another perinom
+//     writes it (its marker names a live perinom process), and the marker run.incomplete is
 //     written. The files an earlier run wrote are removed, unless --keep: those its
 //     manifest perinom.files lists, and, after a killed run (its marker left, no manifest),
 //     those named as a run's output (summary.json, history.csv, load_steps.csv, *.vtu,
@@ -30,7 +31,7 @@ class RunFolder {
   static constexpr const char* manifest = "perinom.files";
 
   /// Prepares `dir` as above, sparing the files named in `spare`. @throws InputError naming
-  /// --out DIR if it cannot be written.
+  /// --out DIR if it cannot be written or another perinom run is writing it.
   RunFolder(std::string dir, bool keep, const std::set<std::string>& spare = {});
   ~RunFolder();
   RunFolder(const RunFolder&) = delete;

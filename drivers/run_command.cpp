@@ -27,7 +27,6 @@
 #include "output_folder.hpp"
 #include "reactions_output.hpp"
 #include "small_strain_check.hpp"
-#include "thin_body_note.hpp"
 #include "run_output.hpp"
 #include "restart.hpp"
 #include "snapshot.hpp"
@@ -147,9 +146,7 @@ int run(const Options& opt) {
                 scene.model.follower_pressure
                     ? "pressures follow the deformed surface; traction vectors stay dead loads (reference area)"
                     : "tractions and pressures stay nominal (model.follower_pressure: false)");
-  if (const std::string thin = thin_body_note(p); !thin.empty()) std::printf("perinom: note: %s\n", thin.c_str());
-  if (const std::string locking = locking_warning(p); !locking.empty())
-    std::printf("perinom: warning: %s\n", locking.c_str());
+  print_body_notes(p);
   if (scene.damage && scene.damage->fracture_energy > 0.0)
     std::printf("perinom: note: damage.fracture_energy: the broken bonds dissipate G_f per unit crack area; a "
                 "notched beam's peak still moved 5%% over a halving of the spacing at horizon 3.015 dx "

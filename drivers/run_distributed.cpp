@@ -26,6 +26,7 @@
 
 #include "commands.hpp"
 #include "distributed_output.hpp"
+#include "locking_warning.hpp"
 #include "memory_estimate.hpp"
 #include "output_folder.hpp"
 #include "perinom/core/error.hpp"
@@ -127,6 +128,7 @@ int run_distributed(const Options& opt) {
   std::optional<PlateFrame> plate;  // a thin plate's whole plate (its physical nodes are the frame's cloud)
   if (thin_plate) plate.emplace(plate_frame(scene));
   const Problem frame = thin_plate ? std::move(plate->problem) : build_problem_frame(scene);  // plate->problem is spent
+  if (root) print_body_notes(frame);
   const int d = frame.cloud.dim;
   // k-nearest families are searched on the whole cloud (the part's own search could break
   // the ties at the k-th distance otherwise), and the part reaches their largest support.

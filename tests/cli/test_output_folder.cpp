@@ -135,7 +135,7 @@ TEST_CASE("a run removes only what a perinom run wrote: a user's files named lik
   }
 }
 
-TEST_CASE("after a killed run the files written since its marker are removed; older ones stay", "[cli]") {
+TEST_CASE("after a killed run the files written since its marker are removed, older ones stay", "[cli]") {
   ScratchDir dir;
   std::ofstream(dir.path / "scene.yaml") << tiny_scene;
   const fs::path out = dir.path / "out";
@@ -156,4 +156,28 @@ TEST_CASE("after a killed run the files written since its marker are removed; ol
   CHECK(slurp(out / "old_000001.vtu") == "mine");
   CHECK(o.out.find("(old_000001.vtu): left in place") != std::string::npos);
   require_finished_folder(out);
+}
+
+TEST_CASE("a run into a folder another perinom run is writing is refused with exit 2, naming the process", "[cli]") {
+  // A sweep of `--set` runs sharing the default out/NAME: the second removed the first's
+  // history and marker, and the folder ended with one run's summary and the other's history.
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  const pid_t pid = test_support::start_in_background(
+      dir.path, "'" PERINOM_EXE "' run scene.yaml --out out --threads 1 --set solver.tolerance=1e-300 "
+                "--set solver.displacement_tolerance=1e-300 --set solver.max_iterations=1000000000 >/dev/null 2>&1");
+  const fs::path marker = dir.path / "out" / "run.incomplete";
+  for (int k = 0; k < 300 && !fs::exists(marker); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  REQUIRE(fs::exists(marker));
+  const Outcome second = perinom(dir, "run scene.yaml --out out");
+  test_support::kill_when(pid, 0.0, [] { return true; }, 0);
+  INFO(second.out << second.err);
+  CHECK(second.exit_code == 2);
+  CHECK(second.err.find("--out out: another perinom run (process " + std::to_string(pid) +
+                        ") is writing this folder") != std::string::npos);
+  // Killed, its marker is stale: the next run goes ahead and replaces the killed run's files.
+  const Outcome third = perinom(dir, "run scene.yaml --out out");
+  INFO(third.out << third.err);
+  CHECK(third.exit_code == 0);
+  require_finished_folder(dir.path / "out");
 }

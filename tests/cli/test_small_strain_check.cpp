@@ -55,7 +55,7 @@ TEST_CASE("a small-strain result within its range says nothing and records its l
   CHECK(g < 1e-2);
 }
 
-TEST_CASE("a thin plate deflected beyond half its thickness warns; within it, not", "[cli]") {
+TEST_CASE("a thin plate deflected beyond half its thickness warns, within it not", "[cli]") {
   // The clamped-plate example at 11 x 11 nodes: 1 kPa deflects it 4e-4 of its 10 mm thickness
   // at E = 210 GPa, and 400 thicknesses at E = 210 kPa (MPa taken for GPa, twice).
   ScratchDir dir;

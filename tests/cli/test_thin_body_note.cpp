@@ -6,7 +6,7 @@
 
 using namespace cli_test;
 
-TEST_CASE("a body fewer than 8 particles across gets a note from check and run; a squat one does not", "[cli]") {
+TEST_CASE("a body fewer than 8 particles across gets a note from check and run, a squat one does not", "[cli]") {
   const std::string slender = with(tiny_scene, "max: [0.01, 0.01]", "max: [0.04, 0.004]");
   const std::string thin = with(with(slender, "  - region: top\n    pressure: 1.0e6\n", "  - region: right\n    traction: [0.0, -1.0e5]\n"),
                                 "  - region: bottom\n", "  - region: left\n");
@@ -28,7 +28,7 @@ TEST_CASE("a body fewer than 8 particles across gets a note from check and run; 
   CHECK(squat.out.find("particles across") == std::string::npos);
 }
 
-TEST_CASE("a ligament 3 particles across between a hole and a face gets the note, where a bounding box sees 20; a small hole none", "[cli]") {
+TEST_CASE("a ligament 3 particles across between a hole and a face gets the note, where a bounding box sees 20, a small hole none", "[cli]") {
   const std::string plate = with(with(tiny_scene, "max: [0.01, 0.01]}", "max: [0.02, 0.02]}\n  holes:\n    - {center: [0.01, 0.012], radius: 0.005}"),
                                  "point: [0.005, 0.01]", "point: [0.01, 0.02]");
   ScratchDir dir;
