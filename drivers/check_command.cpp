@@ -91,6 +91,8 @@ int check(const Options& opt) {
   if (const std::string thin = thin_body_note(p); !thin.empty()) std::printf("  thin            %s\n", thin.c_str());
   if (const std::string locking = locking_warning(p); !locking.empty())
     std::printf("  locking         warning: %s\n", locking.c_str());
+  if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())
+    std::printf("  collapse        %s\n", plastic.c_str());
   std::printf("  bonds           %zu (%.1f per particle)\n", p.bonds, double(p.bonds) / p.cloud.size());
   if (scene.body_files.given()) print_body(p);
   for (const auto& line : plan)

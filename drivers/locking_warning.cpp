@@ -28,10 +28,22 @@ std::string locking_warning(const Problem& p) {
   return buf;
 }
 
+std::string plastic_collapse_note(const Problem& p) {
+  if (p.scene.model.type != "correspondence" || !p.scene.plasticity) return "";
+  return "material drucker_prager: a body that collapses by a mechanism (a footing, a slope) is over-stiff in "
+         "plastic flow and its load does not level off at the limit load: Prandtl's strip footing (phi = 0, plane "
+         "strain, verification/footing) carried 1.30 / 1.24 / 1.17 times (2 + pi) k at a settlement of 5% of its "
+         "half-width with 4 / 8 / 16 particles across that half-width, and 1.56 / 1.40 / 1.26 at 15%, still rising, "
+         "where CalculiX's CPE8R levels off at 1.04 / 1.02 / 1.01 (docs/verification/README.md): a limit load read "
+         "from such a run is too high, more so the coarser the dx";
+}
+
 void print_body_notes(const Problem& p) {
   if (const std::string thin = thin_body_note(p); !thin.empty()) std::printf("perinom: note: %s\n", thin.c_str());
   if (const std::string locking = locking_warning(p); !locking.empty())
     std::printf("perinom: warning: %s\n", locking.c_str());
+  if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())
+    std::printf("perinom: note: %s\n", plastic.c_str());
 }
 
 }  // namespace perinom::cli

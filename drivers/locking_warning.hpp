@@ -20,8 +20,12 @@ inline constexpr int kLockingParticles = 16;
 /// not lock in the measurements the warning quotes).
 std::string locking_warning(const Problem& p);
 
+/// "" or the note (without a prefix) for a Drucker-Prager correspondence body: a collapse by
+/// a mechanism does not level off at its limit load (Prandtl's footing, measured).
+std::string plastic_collapse_note(const Problem& p);
+
 /// Prints, at the start of a run (serial, or the root of a distributed one), the thin-body
-/// note and the locking warning that apply to the problem (`perinom: note:` / `warning:`).
+/// note, the locking warning and the plastic collapse note that apply to the problem (`perinom: note:` / `warning:`).
 void print_body_notes(const Problem& p);
 
 }  // namespace perinom::cli

@@ -31,3 +31,21 @@ TEST_CASE("a nearly incompressible body few particles across gets a locking warn
     CHECK(o.out.find("locking") == std::string::npos);
   }
 }
+
+TEST_CASE("a Drucker-Prager body gets the plastic collapse note from check and run, an elastic one does not", "[cli]") {
+  // Prandtl's footing carried 1.24 times the limit load at 8 particles across its half-width
+  // and was still rising: a limit load read from such a run is not converged.
+  const std::string plastic = with(tiny_scene, "type: linear_elastic", "type: drucker_prager\n  friction_angle: 0.0\n  cohesion: 1.0e6");
+  ScratchDir dir;
+  std::ofstream(dir.path / "plastic.yaml") << plastic;
+  std::ofstream(dir.path / "elastic.yaml") << tiny_scene;
+  const Outcome check = perinom(dir, "check plastic.yaml");
+  INFO(check.out << check.err);
+  CHECK(check.exit_code == 0);
+  CHECK(check.out.find("collapse        material drucker_prager: a body that collapses by a mechanism") != std::string::npos);
+  const Outcome run = perinom(dir, "run plastic.yaml --out out");
+  INFO(run.out << run.err);
+  CHECK(run.exit_code == 0);
+  CHECK(run.out.find("perinom: note: material drucker_prager: a body that collapses") != std::string::npos);
+  CHECK(perinom(dir, "check elastic.yaml").out.find("collapse") == std::string::npos);
+}
