@@ -2,7 +2,9 @@
 // A nearly incompressible body few particles across locks in bending: the plane-strain
 // cantilever at nu = 0.499, 4 particles thick, came out 70% too stiff with exit 0 (the
 // consistent formulation's order-2 gradient is exact for linear fields only at surfaces,
-// and the incompressible bending field is quadratic). Run and check say so before the solve.
+// and the incompressible bending field is quadratic). Run and check say so before the solve,
+// and say that a Drucker-Prager body's collapse load is over-stiff the same way (Prandtl's
+// footing never levels off).
 #include <string>
 
 #include "perinom/scene/problem.hpp"
@@ -25,7 +27,8 @@ std::string locking_warning(const Problem& p);
 std::string plastic_collapse_note(const Problem& p);
 
 /// Prints, at the start of a run (serial, or the root of a distributed one), the thin-body
-/// note, the locking warning and the plastic collapse note that apply to the problem (`perinom: note:` / `warning:`).
+/// note, the locking warning and the plastic collapse note that apply to the problem
+/// (`perinom: note:` / `perinom: warning:`).
 void print_body_notes(const Problem& p);
 
 }  // namespace perinom::cli

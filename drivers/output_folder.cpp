@@ -88,18 +88,19 @@ RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& sp
   std::error_code ec;
   fs::create_directories(dir_, ec);
   const std::string path = dir_ + "/" + marker;
-  // What the earlier run recorded: its manifest, or, killed, the start its marker keeps.
+  // What the earlier run recorded: its manifest, or, if its marker is left (a run going on,
+  // refused below, or killed), the start the marker keeps.
   const std::set<std::string> earlier = read_manifest(dir_);
   std::error_code none;
-  const bool killed = fs::is_regular_file(path, none);
+  const bool marked = fs::is_regular_file(path, none);
   // A marker of a run going on: two runs in one folder would mix their files (a sweep of
   // `--set` runs sharing the default out/NAME: the second removed the first's history and
   // marker, and the folder ended with one run's summary and the other's history).
-  if (const long pid = killed ? marker_process(path) : 0; running_perinom(pid))
+  if (const long pid = marked ? marker_process(path) : 0; running_perinom(pid))
     throw InputError("--out " + dir_ + ": another perinom run (process " + std::to_string(pid) +
                      ") is writing this folder: give this run another --out, or wait for that one to end (if no "
                      "perinom runs, remove " + path + ")");
-  const fs::file_time_type killed_at = killed ? fs::last_write_time(path, none) : fs::file_time_type::max();
+  const fs::file_time_type killed_at = marked ? fs::last_write_time(path, none) : fs::file_time_type::max();
   {
     std::ofstream f(path, std::ios::trunc);
     f << "perinom run in progress (process " << ::getpid()
@@ -117,7 +118,7 @@ RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& sp
       carried_.insert(name);
       continue;
     }
-    const bool written = earlier.count(name) || (killed && !none && entry.last_write_time(e) >= killed_at && !e);
+    const bool written = earlier.count(name) || (marked && !none && entry.last_write_time(e) >= killed_at && !e);
     if (!written) foreign_.push_back(name);
     else if (keep) carried_.insert(name);
     else if (fs::remove(entry.path(), e)) ++removed_;
