@@ -62,8 +62,30 @@ std::string residual_split(Model& model, const ModelChanges* changes, const Load
   return text;
 }
 
+/// Why a step under force control may have no balanced state, for a failed balance's
+/// message: a cracking or yielding body carries only so much. `moved`: how far the
+/// balance carried the displacement from the step's start over the previous step's increment
+/// (0 when unknown); a plastic mechanism shows itself by a displacement that runs away.
+std::string past_capacity(bool cracking, bool plastic, double moved) {
+  if (cracking)
+    return "the stage's forces are more than the cracking body can carry: to follow its path past the peak, "
+           "move the loaded region by a displacement";
+  if (!plastic) return {};
+  char how_far[96] = "";
+  if (moved > 0.0)
+    std::snprintf(how_far, sizeof how_far, ", and this balance moved the body %.3g times the last step's increment",
+                  moved);
+  return std::string("the stage's forces are more than the plastic body can carry (past its limit load a "
+                     "mechanism flows and no balanced state exists") +
+         how_far + "): to reach the limit load, move the loaded region by a displacement and read its reaction";
+}
+
+std::string stage_name(const LoadStage& stage, int k) {
+  return "stage " + std::to_string(k + 1) + " (" + stage.name + ")";
+}
+
 std::string where(const LoadStage& stage, int k, int step) {
-  return "stage " + std::to_string(k + 1) + " (" + stage.name + ") load step " + std::to_string(step);
+  return stage_name(stage, k) + " load step " + std::to_string(step);
 }
 
 }  // namespace
@@ -205,8 +227,12 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
         if (!tangent) throw std::invalid_argument("solve_load_path: the Newton scheme needs a model with a tangent");
         const SolveReport nr = solve_newton(*tangent, stage.loading, nopt, u, progress);
         rep.iterations += nr.iterations;
-        if (nr.diverged) throw DivergenceError(where(stage, int(k), int(nr.history.rows())) + ": " + nr.failure, done + nr.diverged_at);
-        if (!nr.failure.empty()) throw SolveError(where(stage, int(k), int(nr.history.rows())) + ": " + nr.failure);
+        // (Newton's failures name their load step.)
+        const std::string in_stage = stage_name(stage, int(k)) + ": ";
+        if (nr.diverged) throw DivergenceError(in_stage + nr.failure, done + nr.diverged_at);
+        if (!nr.failure.empty())
+          throw SolveError(in_stage + nr.failure +
+                           (stage.loading.has_force() && plastic ? "; perhaps " + past_capacity(false, true, 0.0) : ""));
         done += stage.steps;
         continue;
       }
@@ -218,12 +244,15 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
       std::vector<double> u_prev = resumed_stage ? resume->u_prev : u;
       for (int step = resumed_stage ? first_step : 1; step <= stage.steps; ++step) {
         const double t0 = wall_seconds();
+        double last_increment = 0.0;  // its norm, for a failed balance's message
         if (step > 1) {
           for (std::size_t k = 0; k < u.size(); ++k) {
             const double increment = u[k] - u_prev[k];
             u_prev[k] = u[k];
             u[k] += increment;
+            last_increment += increment * increment;
           }
+          model.sum_across_ranks(&last_increment, 1);
         }
         const auto xi0 = plastic_strains(model);
         LoadStepRecord r;
@@ -252,16 +281,20 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
             char residual[64];  // (std::to_string's fixed six decimals printed 1.8e-8 as 0.000000)
             std::snprintf(residual, sizeof residual, "%.3e, target %.1e", balance.residual, opt.adr.tolerance);
             const std::string split = residual_split(model, changes, stage.loading, r.load_factor, u, balance.residual, fint);
+            double moved = 0.0;
+            for (std::size_t k = 0; k < u.size(); ++k) moved += (u[k] - u_prev[k]) * (u[k] - u_prev[k]);
+            model.sum_across_ranks(&moved, 1);
             // The state left is the last balanced one: this step's previous round, or the last step.
             u = r.rounds > 1 ? balanced : u_prev;
-            // Under force control a cracking body has no balanced state once the force passes what it carries.
-            const bool forced = changes && stage.loading.has_force() && stage.loading.force_norm(r.load_factor) > 0.0;
+            const bool forced = stage.loading.has_force() && stage.loading.force_norm(r.load_factor) > 0.0;
+            const std::string capacity =
+                forced ? past_capacity(changes != nullptr, plastic != nullptr,
+                                       last_increment > 0.0 ? std::sqrt(moved / last_increment) : 0.0)
+                       : "";
             throw SolveError(where(stage, int(k), step) + ": the balance did not converge in " +
                              std::to_string(balance.iterations) + " ADR iterations (residual " + residual + split +
                              "); raise solver.max_iterations or loosen the tolerance" +
-                             (forced ? "; or the stage's forces are more than the cracking body can carry: to follow "
-                                       "its path past the peak, move the loaded region by a displacement"
-                                     : ""));
+                             (capacity.empty() ? "" : "; or " + capacity));
           }
           if (changes || plastic) balanced = u;
           if (opt.scheme == LoadPathScheme::lbc && plastic) {

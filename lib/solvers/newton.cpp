@@ -15,6 +15,7 @@
 #include "perinom/core/error.hpp"
 #include "perinom/solvers/jacobian.hpp"
 #include "perinom/solvers/vector_ops.hpp"
+#include "singular_stiffness.hpp"
 
 namespace perinom {
 namespace {
@@ -154,10 +155,13 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
                        std::to_string(A.col.size()) + " nonzeros before fill); use solver.type adr, "
                        "or a smaller horizon ratio (the Jacobian couples particles two horizons apart)");
     const double rcond = reciprocal_pivot_ratio(ls.get());
-    if ((flag == KIN_LSETUP_FAIL && common && common->status == KLU_SINGULAR) || (iterations > 0 && rcond < 1e-13))
-      throw InputError("Newton: the stiffness is singular (KLU reciprocal pivot ratio " + std::to_string(rcond) +
-                       "): the body can move without deforming; a boundary condition is probably missing "
-                       "(fix enough components to stop rigid translation and rotation)");
+    if ((flag == KIN_LSETUP_FAIL && common && common->status == KLU_SINGULAR) || (iterations > 0 && rcond < 1e-13)) {
+      char factor[64];
+      std::snprintf(factor, sizeof factor, "KLU reciprocal pivot ratio %.1e", rcond);
+      rep.failure = detail::singular_stiffness(model, step, factor);  // (an elastic body's throws: a missing support)
+      std::copy(u_start.begin(), u_start.end(), u.begin());
+      break;
+    }
     // The residual as ADR measures it, for a like-for-like report.
     to_u();
     system.residual(z.data(), data.s, R.data());

@@ -18,6 +18,7 @@
 #include "petsc_plugin.hpp"
 #include "petsc_ranks.hpp"
 #include "petsc_session.hpp"
+#include "singular_stiffness.hpp"
 
 namespace perinom::detail {
 namespace {
@@ -291,11 +292,13 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
     SNESGetLinearSolveIterations(snes.p, &linear);
     SNESGetConvergedReason(snes.p, &reason);
     rep.iterations += iterations;
-    if (const PetscInt nulls = null_pivots(snes.p, opt); nulls != 0)
-      throw InputError("Newton (PETSc): the stiffness is singular (MUMPS " +
-                       (nulls > 0 ? "found " + std::to_string(nulls) + " null pivots" : std::string("stopped: numerically singular")) +
-                       "): the body can move without deforming; a boundary condition is probably missing (fix enough "
-                       "components to stop rigid translation and rotation)");
+    if (const PetscInt nulls = null_pivots(snes.p, opt); nulls != 0) {
+      // (An elastic body's singular stiffness throws: a missing support.)
+      rep.failure = singular_stiffness(model, step, nulls > 0 ? "MUMPS found " + std::to_string(nulls) + " null pivots"
+                                                              : std::string("MUMPS stopped: numerically singular"));
+      check(VecCopy(x_start.p, x.p), "VecCopy");
+      break;
+    }
     // The residual as ADR measures it (as the KLU path reports it).
     {
       const PetscScalar* a = nullptr;

@@ -1,0 +1,17 @@
+#pragma once
+/// @file What a singular Newton stiffness means, said once for KLU and PETSc.
+#include <string>
+
+#include "perinom/models/model.hpp"
+
+namespace perinom::detail {
+
+/// Called when a Newton step's factorization finds the stiffness singular (`factor` says how:
+/// "KLU reciprocal pivot ratio 1.2e-17"). An elastic body's stiffness does not change with the
+/// load, so a missing support is the cause: throws InputError (exit 2). A plastic body's
+/// tangent loses stiffness as it yields: past its limit load a mechanism flows, and the step
+/// has no balanced state. Returns that failure's text for the solver's report (exit 3, the
+/// last good state written), naming the load step.
+std::string singular_stiffness(const Model& model, int step, const std::string& factor);
+
+}  // namespace perinom::detail
