@@ -35,7 +35,9 @@ std::string plastic_collapse_note(const Problem& p) {
          "strain, verification/footing) carried 1.30 / 1.24 / 1.17 times (2 + pi) k at a settlement of 5% of its "
          "half-width with 4 / 8 / 16 particles across that half-width, and 1.56 / 1.40 / 1.26 at 15%, still rising, "
          "where CalculiX's CPE8R levels off at 1.04 / 1.02 / 1.01 (docs/verification/README.md): a limit load read "
-         "from such a run is too high, more so the coarser the dx";
+         "from such a run is too high, more so the coarser the dx. The stabilization (model.stabilization, elastic) "
+         "resists the mechanism's flow: 0.1 instead of 0.5 gives 1.17 instead of 1.26 at 16 across and 15%, and 0 levels off near "
+         "the limit but lets zero-energy modes spoil the field";
 }
 
 void print_body_notes(const Problem& p) {
