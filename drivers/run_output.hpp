@@ -34,6 +34,7 @@ class HistoryAsItGoes : public Progress {
   HistoryAsItGoes(Progress& inner, std::string path) : inner_(inner), path_(std::move(path)) {}
   void update(const ProgressSample& s) override;
   void phase(const char* what) override { inner_.phase(what); }
+  void warn(const char* what) override { inner_.warn(what); }
   void finish() override { inner_.finish(); }
 
  private:

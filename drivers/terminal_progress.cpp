@@ -61,4 +61,9 @@ void TerminalProgress::phase(const char* what) {
   std::fflush(stdout);
 }
 
+void TerminalProgress::warn(const char* what) {
+  std::printf("perinom: warning: %s\n", what);
+  std::fflush(stdout);
+}
+
 }  // namespace perinom::cli

@@ -13,6 +13,7 @@ class TerminalProgress : public Progress {
   void update(const ProgressSample& s) override;
   void finish() override;
   void phase(const char* what) override;
+  void warn(const char* what) override;
 
  private:
   const char* label_;

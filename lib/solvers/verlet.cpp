@@ -44,6 +44,15 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
                          : changes && changes->stable_step ? changes->stable_step()
                                                            : stable_time_step(model);
   double dt = resume ? resume->dt : opt.dt > 0.0 ? opt.dt : opt.safety * rep.stable_time_step;
+  if (progress && !resume && opt.dt > rep.stable_time_step && rep.stable_time_step > 0.0) {
+    char what[400];
+    std::snprintf(what, sizeof what,
+                  "solver.dt = %.4g s is %.3g times the stable step estimate %.4g s (2 / omega_max by Gershgorin, "
+                  "a lower bound of the limit): the run may be stable, and if it is not the energy guard stops it "
+                  "(exit 3); dt: 0 takes safety times the estimate",
+                  opt.dt, opt.dt / rep.stable_time_step, rep.stable_time_step);
+    progress->warn(what);
+  }
   // Kept when changes lower the stable step (0: no finite stable step to follow).
   const double dt_per_stable = changes && resume ? resume->dt_per_stable
                                : std::isfinite(rep.stable_time_step) && rep.stable_time_step > 0.0

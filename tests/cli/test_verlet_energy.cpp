@@ -90,4 +90,12 @@ TEST_CASE("a Verlet run that diverges with a given dt above the stable step esti
   const Outcome fine = bar("verlet_dt_fine", "run", "--out out --set solver.dt=1.0e-7 --set solver.steps=200");
   INFO(fine.out << fine.err);
   CHECK(fine.exit_code == 0);
+  CHECK(fine.out.find("stable step estimate") == std::string::npos);
+  // Above the estimate (a lower bound) but below the true limit: warned before the steps, and it runs.
+  const Outcome bold = bar("verlet_dt_bold", "run", "--out out --set solver.dt=1.7e-7 --set solver.steps=2000");
+  INFO(bold.out << bold.err);
+  CHECK(bold.exit_code == 0);
+  const auto warned = bold.out.find("perinom: warning: solver.dt = 1.7e-07 s is 1.");
+  CHECK(warned != std::string::npos);
+  CHECK(warned < bold.out.find("results in"));
 }

@@ -25,6 +25,9 @@ class Progress {
   virtual void update(const ProgressSample& s) = 0;
   /// A step before the iterations that may take long on large scenes (once per call).
   virtual void phase(const char* /*what*/) {}
+  /// Something the user should know before the iterations start (the command line prints
+  /// "perinom: warning: " and it).
+  virtual void warn(const char* /*what*/) {}
   virtual void finish() {}
 };
 
