@@ -89,6 +89,8 @@ void require_distributed(const Scene& s, const Options& opt) {
     refuse("solver.type", s.solver.type);
   if (s.damage) refuse("damage", "bond breaking");
   if (!s.precracks.empty()) refuse("precracks", "a precrack");
+  // (Each rank's families reach its ghosts, whose committed states the secant scale would read.)
+  if (s.model.stabilization_scale != "elastic") refuse("model.stabilization_scale", "a secant stabilization");
   if (s.solver.check != "none" && s.load_path()) refuse("solver.check", "the " + s.solver.check + " check of a load path");
   if (s.output.checkpoint_every > 0) refuse("output.checkpoint_every", "a checkpoint");
 }

@@ -66,11 +66,23 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
   if (!consistent && formulation_ != Formulation::classical && surface_.in_band.size() != cloud.size())
     throw std::invalid_argument("CorrespondenceModel: the improved and strong formulations need surface data");
   if (formulation_ == Formulation::classical || consistent) surface_ = Surface{};
-  if (consistent && options.stabilization_storage != StabilizationStorage::automatic &&
+  // At order 2 the matrix-free S keeps a fit of its own (the uncorrected one, as assembled:
+  // the cantilever's tip agrees to 2e-14), so only the first-order forms need G's identities.
+  if (consistent && order_ == 1 && options.stabilization_storage != StabilizationStorage::automatic &&
       options.stabilization_storage != StabilizationStorage::assembled)
-    throw InputError("model.stabilization_storage: the consistent formulation stores S assembled (its "
-                     "corrected G has not the first-order identities the fused and matrix-free forms "
-                     "rest on); use auto or assembled");
+    throw InputError("model.stabilization_storage: the consistent formulation with operator_order 1 stores S "
+                     "assembled (its corrected G has not the first-order identities the fused and matrix-free "
+                     "forms rest on); use auto or assembled");
+  secant_ = options.secant_stabilization && options.stabilization > 0.0;
+  if (secant_ && !options.plasticity)
+    throw std::invalid_argument("CorrespondenceModel: a secant stabilization follows a plastic law");
+  if (secant_ && consistent && order_ == 1)
+    throw InputError("model.stabilization_scale: secant needs a matrix-free stabilization, which the consistent "
+                     "formulation has at operator_order 2 only");
+  if (secant_ && options.stabilization_storage != StabilizationStorage::automatic &&
+      options.stabilization_storage != StabilizationStorage::matrix_free)
+    throw InputError("model.stabilization_scale: secant scales each family's block of S, which only the "
+                     "matrix-free storage keeps apart; use stabilization_storage auto or matrix_free");
   if (law_ && (law_->dim() != dim_ || law_->size() != cloud.size()))
     throw std::invalid_argument("CorrespondenceModel: a law for " + std::to_string(law_->size()) + " particles in " +
                                 std::to_string(law_->dim()) + "-D on a cloud of " + std::to_string(cloud.size()) +
@@ -107,7 +119,8 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
                               "stabilization S (assembled)");
   } else if (options.stabilization > 0.0) {
     // Order 2 with the consistent formulation: from the uncorrected G too (its scale c_i).
-    const StabilizationStorage storage = options.stabilization_storage;
+    const StabilizationStorage storage =
+        secant_ ? StabilizationStorage::matrix_free : options.stabilization_storage;
     const bool fused = storage == StabilizationStorage::fused ||
                        (storage == StabilizationStorage::automatic && order_ == 1 && G_.graph().symmetric());
     S_ = make_stabilization(cloud, G_, weights, modulus,
@@ -297,6 +310,14 @@ void CorrespondenceModel::commit(const double* u) {
   G_.apply(u, dim_, H_.data());
   for_each_law_block(particles(), [&](std::size_t lo, std::size_t hi) { law_->stresses(lo, hi, H_.data(), Q_.data()); });
   law_->commit();
+  follow_secant_stiffness();
+}
+
+void CorrespondenceModel::follow_secant_stiffness() {
+  if (!secant_) return;
+  const PlasticPoints* points = plastic();
+  if (!points) throw std::logic_error("CorrespondenceModel: a secant stabilization without a plastic law");
+  S_->set_centre_factors(points->secant_ratios());
 }
 
 namespace {

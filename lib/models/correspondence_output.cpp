@@ -137,7 +137,8 @@ std::vector<PlanLine> CorrespondenceModel::plan() const {
   std::vector<PlanLine> lines;
   if (dim_ == 2) lines.push_back({"dimension", material_.plane == PlaneCondition::strain ? ", plane strain" : ", plane stress"});
   lines.push_back({"model", std::string("correspondence, ") + formulation_name(formulation_) +
-                                " formulation, stabilization C_hg = " + format("%g", c_hg_)});
+                                " formulation, stabilization C_hg = " + format("%g", c_hg_) +
+                                (secant_ ? ", each particle's scaled by its secant shear stiffness" : "")});
   if (formulation_ == Formulation::consistent) {
     const ConsistencyReport& c = consistency_;
     char buf[256];
@@ -183,7 +184,13 @@ std::size_t CorrespondenceModel::flag_violations(double tolerance) { return law_
 std::vector<double> CorrespondenceModel::history_variable() const { return law_->history()->history_variable(); }
 std::size_t CorrespondenceModel::values_per_particle() const { return law_->history()->values_per_particle(); }
 HistoryState CorrespondenceModel::save_history() const { return law_->history()->save_history(); }
-void CorrespondenceModel::restore_history(const HistoryState& s) { law_->history()->restore_history(s); }
-void CorrespondenceModel::reset_history() { law_->history()->reset_history(); }
+void CorrespondenceModel::restore_history(const HistoryState& s) {
+  law_->history()->restore_history(s);
+  follow_secant_stiffness();
+}
+void CorrespondenceModel::reset_history() {
+  law_->history()->reset_history();
+  follow_secant_stiffness();
+}
 
 }  // namespace perinom

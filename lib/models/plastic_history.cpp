@@ -1,6 +1,8 @@
 // The Drucker-Prager points' history as a load path drives it (LawHistory): the mode, the
-// committed equivalent plastic strain, and the committed states as numbers for checkpoints.
+// committed equivalent plastic strain and secant stiffness, and the committed states as
+// numbers for checkpoints.
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -17,6 +19,24 @@ std::vector<double> PlasticPoints::history_variable() const {
   xi.reserve(committed_.size());
   for (const auto& point : committed_) xi.push_back(point.law.xi);
   return xi;
+}
+
+std::vector<double> PlasticPoints::secant_ratios() const {
+  std::vector<double> ratio(committed_.size(), 1.0);
+  const double two_g = 2.0 * law_.shear();
+  for (std::size_t i = 0; i < committed_.size(); ++i) {
+    const Point& p = committed_[i];
+    const double mean_s = (p.law.sigma[0] + p.law.sigma[4] + p.law.sigma[8]) / 3.0;
+    const double mean_e = (p.eps[0] + p.eps[4] + p.eps[8]) / 3.0;
+    double s2 = 0.0, e2 = 0.0;
+    for (int k = 0; k < 9; ++k) {
+      const double on_diagonal = k % 4 == 0 ? 1.0 : 0.0;
+      const double s = p.law.sigma[k] - on_diagonal * mean_s, e = p.eps[k] - on_diagonal * mean_e;
+      s2 += s * s, e2 += e * e;
+    }
+    if (e2 > 0.0) ratio[i] = std::min(1.0, std::sqrt(s2 / e2) / two_g);
+  }
+  return ratio;
 }
 
 HistoryState PlasticPoints::save_history() const {

@@ -150,6 +150,7 @@ Stabilization::Stabilization(const PointCloud& cloud, const NonlocalOperator& fi
     throw std::invalid_argument("Stabilization: the second-order fit has no Hessian weights");
   const BondGraph& g = fit.graph();
   for (std::size_t i = 0; i < cloud.size(); ++i) cv_[i] = fit.is_detached(i) ? 0.0 : scale_(i);
+  c0_ = cv_;
   for (std::size_t k = 0; k < wv_.size(); ++k) {
     if (!g.alive(static_cast<Offset>(k))) wv_[k] = 0.0;
     t_wv_[g.dual_entry(static_cast<Offset>(k))] = wv_[k];
@@ -162,8 +163,17 @@ Stabilization::Stabilization(const PointCloud& cloud, const NonlocalOperator& G,
 void Stabilization::refresh_row(ParticleId i) {
   const BondGraph& g = fit_->graph();
   const std::vector<double>& wv = OperatorAccess::wv(*fit_);
-  cv_[i] = fit_->is_detached(i) ? 0.0 : scale_(i);
+  c0_[i] = fit_->is_detached(i) ? 0.0 : scale_(i);
+  cv_[i] = factor_.empty() ? c0_[i] : factor_[i] * c0_[i];
   for (Offset k = g.begin(i); k < g.end(i); ++k) t_wv_[g.dual_entry(k)] = wv_[k] = g.alive(k) ? wv[k] : 0.0;
+}
+
+void Stabilization::set_centre_factors(std::vector<double> factor) {
+  if (factor.size() != cv_.size())
+    throw std::invalid_argument("Stabilization::set_centre_factors: " + std::to_string(factor.size()) +
+                                " factors for " + std::to_string(cv_.size()) + " particles");
+  factor_ = std::move(factor);
+  for (std::size_t i = 0; i < cv_.size(); ++i) cv_[i] = factor_[i] * c0_[i];
 }
 
 void Stabilization::refresh_rows(const std::vector<ParticleId>& rows) {
@@ -333,7 +343,7 @@ void Stabilization::add_row(std::size_t i, RowAccumulator& acc, int copies) cons
 void Stabilization::add_row(std::size_t i, const std::function<void(ParticleId, double)>& add) const { row(i, add); }
 
 std::size_t Stabilization::memory_bytes() const {
-  return (x_.size() + cv_.size() + wv_.size() + t_wv_.size() + r_.size()) * sizeof(double);
+  return (x_.size() + cv_.size() + c0_.size() + factor_.size() + wv_.size() + t_wv_.size() + r_.size()) * sizeof(double);
 }
 
 StabilizationScale shape_scale(const NonlocalOperator& G, double modulus, std::vector<double> volume) {

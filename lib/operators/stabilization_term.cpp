@@ -25,6 +25,7 @@ class MatrixFreeTerm final : public StabilizationTerm {
   void add_rest(const double* u, const double* H, double* f) override { S_.add_direct(u, H, r_.data(), f); }
   void add_row(std::size_t i, RowAccumulator& acc, int copies) const override { S_.add_row(i, acc, copies); }
   void refresh_rows(const std::vector<ParticleId>& rows) override { S_.refresh_rows(rows); }
+  void set_centre_factors(std::vector<double> factor) override { S_.set_centre_factors(std::move(factor)); }
   std::string name() const override { return "stabilization (matrix-free)"; }
   std::size_t memory_bytes() const override {
     return S_.memory_bytes() + (B_.size() + r_.size()) * sizeof(double);
@@ -131,6 +132,7 @@ class SecondOrderMatrixFreeTerm final : public StabilizationTerm {
     fit_.refresh_rows(rows);
     S_.refresh_rows(rows);
   }
+  void set_centre_factors(std::vector<double> factor) override { S_.set_centre_factors(std::move(factor)); }
   std::string name() const override { return "second-order stabilization (matrix-free)"; }
   std::size_t memory_bytes() const override {
     return fit_.memory_bytes() + S_.memory_bytes() + (grad_.size() + hess_.size()) * sizeof(double);
@@ -152,6 +154,10 @@ void add_stored_row(const ScalarCsr& S0, std::size_t i, RowAccumulator& acc, int
 }
 
 void StabilizationTerm::gradient(const double* u, double* H) { G_->apply(u, G_->dim(), H); }
+
+void StabilizationTerm::set_centre_factors(std::vector<double>) {
+  throw std::logic_error("StabilizationTerm: " + name() + " cannot scale its centres (the matrix-free levels can)");
+}
 
 void StabilizationTerm::refresh_rows(const std::vector<ParticleId>& rows, const std::function<void()>& change) {
   change();

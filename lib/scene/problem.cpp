@@ -201,6 +201,7 @@ CorrespondenceOptions correspondence_options(const Scene& s) {
       s.model.weight_precision == "single" ? WeightPrecision::float32 : WeightPrecision::float64;
   parse_formulation(s.model.formulation, opt.formulation);
   opt.plasticity = s.plasticity;
+  opt.secant_stabilization = s.model.stabilization_scale == "secant";
   if (s.model.kinematics == "finite_rotation") opt.kinematics = Kinematics::finite_rotation;
   opt.follower_pressure = s.model.follower_pressure;
   opt.fracture_fields = s.damage.has_value() || !s.precracks.empty();

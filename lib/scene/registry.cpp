@@ -31,6 +31,7 @@ std::vector<ModelEntry> make_models() {
       {"formulation", d.formulation, "consistent | classical | improved | strong"},
       {"stabilization", text(d.stabilization), "C_hg"},
       {"stabilization_storage", d.stabilization_storage, "auto | fused | assembled | matrix_free"},
+      {"stabilization_scale", d.stabilization_scale, "elastic | secant (drucker_prager only)"},
       {"weight_precision", d.weight_precision, "double | single"},
       {"operator_order", "", "2 with the consistent formulation, 1 otherwise"},
       {"kinematics", d.kinematics, "small_strain | finite_rotation (drucker_prager only)"},

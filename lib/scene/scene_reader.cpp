@@ -217,9 +217,23 @@ void read_correspondence_model(Fields& f, Scene& s) {
     f.fail("stabilization_storage", "with operator_order 2 the stabilization is the second-order operator energy, "
                                     "assembled or matrix_free (fused rests on the first-order fit; use auto, assembled "
                                     "or matrix_free)");
-  if (s.model.formulation == "consistent" && s.model.stabilization > 0.0 && storage != StabilizationStorage::automatic &&
-      storage != StabilizationStorage::assembled)
-    f.fail("stabilization_storage", "the consistent formulation stores the stabilization assembled (use auto or assembled)");
+  if (s.model.formulation == "consistent" && s.model.operator_order == 1 && s.model.stabilization > 0.0 &&
+      storage != StabilizationStorage::automatic && storage != StabilizationStorage::assembled)
+    f.fail("stabilization_storage", "the consistent formulation with operator_order 1 stores the stabilization "
+                                    "assembled (use auto or assembled)");
+  s.model.stabilization_scale = f.text("stabilization_scale", ModelSpec{}.stabilization_scale);
+  if (s.model.stabilization_scale != "elastic" && s.model.stabilization_scale != "secant")
+    f.fail("stabilization_scale", "must be elastic or secant");
+  if (s.model.stabilization_scale == "secant") {
+    if (!s.plasticity) f.fail("stabilization_scale", "secant follows a drucker_prager material's plastic states");
+    if (!(s.model.stabilization > 0.0)) f.fail("stabilization_scale", "secant scales a stabilization: needs model.stabilization > 0");
+    if (storage != StabilizationStorage::automatic && storage != StabilizationStorage::matrix_free)
+      f.fail("stabilization_scale", "secant scales each family's block of S, which only the matrix-free storage "
+                                    "keeps apart (stabilization_storage auto or matrix_free)");
+    if (s.model.formulation == "consistent" && s.model.operator_order == 1)
+      f.fail("stabilization_scale", "secant needs a matrix-free stabilization, which the consistent formulation "
+                                    "has at operator_order 2 only");
+  }
   s.model.kinematics = f.text("kinematics", ModelSpec{}.kinematics);
   if (s.model.kinematics != "small_strain" && s.model.kinematics != "finite_rotation")
     f.fail("kinematics", "must be small_strain or finite_rotation");

@@ -44,7 +44,7 @@ std::vector<double> basis(const double* xi, int d, int order) {
 
 /// W_s = 1/2 sum_i V_i c_i sum_j w_ij V_j z_ij^2 for a scalar field, z_ij = u_j - u_i - D_i p_ij
 /// (THEORY sec. 4 and 6), straight from the definition.
-double stabilization_energy(const Setup& s, const std::vector<double>& u) {
+double stabilization_energy(const Setup& s, const std::vector<double>& u, const std::vector<double>& factor = {}) {
   const int d = s.cloud.dim, order = s.op->order(), m = d * (d + 1) / 2;
   std::vector<double> D(s.cloud.size() * d), Hs(s.cloud.size() * m);
   s.G.apply(u.data(), 1, D.data());
@@ -60,7 +60,7 @@ double stabilization_energy(const Setup& s, const std::vector<double>& u) {
       for (int b = 0; b < d; ++b) z -= D[i * d + b] * p[b];
       if (order == 2)
         for (int q = 0; q < m; ++q) z -= Hs[i * m + q] * p[d + q];
-      W += 0.5 * s.cloud.volume[i] * s.c[i] * s.weights.wv[k] * z * z;
+      W += 0.5 * s.cloud.volume[i] * s.c[i] * (factor.empty() ? 1.0 : factor[i]) * s.weights.wv[k] * z * z;
     }
   return W;
 }
@@ -188,5 +188,51 @@ TEST_CASE("the second-order bond passes equal the assembled S on d components an
       // B belongs to the first-order form only.
       std::vector<double> B(n * dim * dim), r(n * dim), u(n * dim, 0.0), g(n * dim * dim), h(n * dim * m);
       CHECK_THROWS_AS(s.op->bond_terms(u.data(), dim, g.data(), h.data(), B.data(), r.data()), std::invalid_argument);
+    }
+}
+
+TEST_CASE("centre factors scale each family's block: force, rows and energy follow c_i factor_i", "[operators][stabilization]") {
+  // The secant stabilization of a plastic body (model.stabilization_scale: secant) scales
+  // each centre's block by its particle's factor; the force (bond passes), the rows (Newton's
+  // tangent, assembled here) and the energy must all be the sum of the scaled blocks.
+  for (int order : {1, 2})
+    for (int dim : {2, 3}) {
+      Setup s;
+      make(s, dim, dim == 2 ? 8 : 4, false, order);
+      const std::size_t n = s.cloud.size();
+      INFO("order " << order << ", dim " << dim);
+      s.op->set_centre_factors(std::vector<double>(n, 1.0));
+      const ScalarCsr same = assemble_stabilization(*s.op, n);
+      CHECK(same.values == s.S.values);  // factors of 1 change nothing, to the bit
+      const auto factor = test::random_field(n, 1.0, 9);  // in (-1, 1): take |.|, some near 0
+      std::vector<double> f(n);
+      for (std::size_t i = 0; i < n; ++i) f[i] = std::abs(factor[i]);
+      s.op->set_centre_factors(f);
+      const ScalarCsr S = assemble_stabilization(*s.op, n);
+      const auto u = test::random_field(n, 1e-3, 4);
+      std::vector<double> Su(n, 0.0);
+      S.apply_add(u.data(), 1, Su.data());
+      double uSu = 0.0;
+      for (std::size_t k = 0; k < n; ++k) uSu += u[k] * Su[k];
+      CHECK(uSu == Approx(2.0 * stabilization_energy(s, u, f)).epsilon(1e-11));
+      CHECK(uSu < 0.9 * 2.0 * stabilization_energy(s, u));  // and it did change
+      for (std::size_t k = 0; k < n; k += 7) {
+        auto up = u, um = u;
+        const double h = 1e-4;
+        up[k] += h, um[k] -= h;
+        const double fd = (stabilization_energy(s, up, f) - stabilization_energy(s, um, f)) / (2 * h);
+        CHECK(Su[k] == Approx(fd).epsilon(1e-7).margin(1e-9 * test::max_abs(Su)));
+      }
+      if (order == 2) {
+        // The bond passes (the explicit force) against the rows.
+        std::vector<double> grad(n * dim), hess(n * s.G.hessian_terms()), free(n, 0.0);
+        s.G.apply(u.data(), 1, grad.data());
+        s.G.apply(u.data(), 1, hess.data(), Derivative::hessian);
+        s.op->add_force(u.data(), 1, grad.data(), hess.data(), free.data());
+        double err = 0.0;
+        for (std::size_t k = 0; k < n; ++k) err = std::max(err, std::abs(free[k] - Su[k]));
+        CHECK(err <= 1e-11 * test::max_abs(Su));
+      }
+      CHECK_THROWS_AS(s.op->set_centre_factors(std::vector<double>(n + 1, 1.0)), std::invalid_argument);
     }
 }

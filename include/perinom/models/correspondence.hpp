@@ -67,6 +67,11 @@ struct CorrespondenceOptions {
   ///    (seed 002 eq. 35-39, operators/stabilization.hpp): assembled (the fit's Hessian
   ///    weights serve only to assemble S and are not kept) or matrix_free (the fit is kept).
   int operator_order = 1;
+  /// With plasticity: each particle's stabilization follows its committed secant shear
+  /// stiffness (c_i times PlasticPoints::secant_ratios, updated at every commit), so S does
+  /// not resist plastic flow as an elastic body would. Needs a matrix-free S (automatic
+  /// storage chooses it): operator order 2, or order 1 with the classical formulation.
+  bool secant_stabilization = false;
   /// A Drucker-Prager law in place of the linear elastic one (its E and nu must be the
   /// material's; the stabilization and the explicit solvers' mass use the elastic moduli).
   /// Any other law is given to the constructor (PointwiseLaw).
@@ -243,6 +248,9 @@ class CorrespondenceModel : public LocalModel, public ModelHistory {
 
  private:
   double c_hg_ = 0.0;       // the stabilization coefficient asked for (for the plan)
+  bool secant_ = false;     // CorrespondenceOptions::secant_stabilization
+  /// The stabilization's centre factors from the committed states (secant_stabilization).
+  void follow_secant_stiffness();
   double modulus_ = 0.0;    // C_hg 2 mu: c_i = modulus / tr K_i
   bool fracture_fields_ = false;  // CorrespondenceOptions::fracture_fields
   std::vector<double> x_;   // the particles' positions (surface stress at the facets)

@@ -96,6 +96,10 @@ class PlasticPoints final : public PerParticleLaw<PlasticPoints>, public Increme
   void reset_history() override { reset(); }
   /// Makes the kept trial states the committed ones.
   void commit() override;
+  /// Each committed state's secant shear stiffness over the elastic one, |dev sigma| / (2 G
+  /// |dev eps|) with eps the total strain, at most 1: 1 while elastic (and for no strain),
+  /// falling as plastic strain accumulates under a bounded stress.
+  std::vector<double> secant_ratios() const;
   /// The flagged particles.
   std::size_t flagged() const;
   /// Back to the virgin state: no stress, no plastic strain, no flag.

@@ -78,6 +78,10 @@ class Stabilization {
 
   /// cv_i of every particle.
   const std::vector<double>& scaled_coefficients() const { return cv_; }
+  /// cv_i = factor_i times its value as built (one factor per particle, e.g. the material's
+  /// secant stiffness over its elastic one); kept through refresh_rows. The force, energy and
+  /// rows then use the scaled values.
+  void set_centre_factors(std::vector<double> factor);
   /// w_ij V_j of bond k (row order; zero for a dead bond).
   double bond_weight(Offset k) const { return wv_[k]; }
 
@@ -101,6 +105,7 @@ class Stabilization {
   const NonlocalOperator* fit_;
   StabilizationScale scale_;
   std::vector<double> x_, cv_;     // positions; cv_i
+  std::vector<double> c0_, factor_;  // cv_i as built (scale_, read once: G may change after), its factor
   std::vector<double> wv_, t_wv_;  // w_ij V_j in row order and in dual-support order
   std::vector<double> r_;          // add_force's workspace
 };

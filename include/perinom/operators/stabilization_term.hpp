@@ -55,6 +55,10 @@ class StabilizationTerm {
   virtual void refresh_rows(const std::vector<ParticleId>& rows, const std::function<void()>& change);
   /// False for a stored S without its source, whose refresh_rows throws.
   virtual bool refreshable() const { return true; }
+  /// Scales each centre's block (c_i = factor_i times its built value; Stabilization::
+  /// set_centre_factors). The matrix-free levels only: a stored or fused S sums the centres'
+  /// blocks into one value per entry or bond, and throws std::logic_error.
+  virtual void set_centre_factors(std::vector<double> factor);
   /// For memory listings: what is stored, and its bytes (workspaces included).
   virtual std::string name() const = 0;
   virtual std::size_t memory_bytes() const = 0;

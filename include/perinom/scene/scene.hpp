@@ -45,6 +45,7 @@ struct ModelSpec {
   std::string formulation = "consistent";
   double stabilization = 0.5;  ///< C_hg (thin_plate: of the operator energy)
   std::string stabilization_storage = "auto";  ///< auto | fused | assembled | matrix_free
+  std::string stabilization_scale = "elastic";  ///< elastic | secant (drucker_prager: S follows the secant stiffness)
   std::string weight_precision = "double";          ///< double | single (G's stored weights)
   std::string kinematics = "small_strain";  ///< small_strain | finite_rotation (plasticity)
   bool follower_pressure = false;  ///< pressures follow the deformed surface (finite_rotation; its default)
