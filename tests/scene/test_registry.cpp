@@ -120,6 +120,7 @@ TEST_CASE("the defaults the scene reader applies are the registry's and the solv
     const std::map<std::string, std::string> read = {{"formulation", s.model.formulation},
                                                      {"stabilization", "0.5"},
                                                      {"stabilization_storage", s.model.stabilization_storage},
+                                                     {"stabilization_scale", s.model.stabilization_scale},
                                                      {"weight_precision", s.model.weight_precision},
                                                      {"kinematics", s.model.kinematics}};
     CHECK(s.model.stabilization == 0.5);
