@@ -105,7 +105,8 @@ class CorrespondenceModel : public LocalModel, public ModelHistory {
   /// (or second-order fit), or a stabilization storage the operator order cannot use.
   /// The improved and strong formulations need the surface data (find_surface), the
   /// consistent one the boundary facets (lattice_facets). The consistent formulation stores S
-  /// assembled (fused storage is refused: it rests on G's first-order identities).
+  /// assembled, or at operator order 2 matrix-free (the fused and first-order matrix-free
+  /// forms rest on G's first-order identities, which the corrected G has not).
   /// The pointwise law: `law` when given (its dim() and size() must be the cloud's; the
   /// material then only gives the elastic moduli of S, the mass and the stiffness bound),
   /// otherwise Drucker-Prager points (options.plasticity) or the material's ElasticPoints.
