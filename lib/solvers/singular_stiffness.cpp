@@ -17,13 +17,15 @@ std::string singular_stiffness(const Model& model, int step, const std::string& 
   double yielded = std::any_of(xi.begin(), xi.end(), [](double x) { return x > 0.0; }) ? 1.0 : 0.0;
   model.max_across_ranks(&yielded, 1);
   const std::string where = " in load step " + std::to_string(step);
+  // Past the first step the elastic stiffness was regular (it factored then): the trial
+  // states' yielding made it singular, whether or not earlier steps had committed plastic strain.
   if (yielded > 0.0 || step > 1)
-    return "Newton: " + singular + where + ", after the body had yielded: its tangent has lost all stiffness along "
+    return "Newton: " + singular + where + ", as the body yields: its tangent has lost all stiffness along "
            "a mechanism; the last good state is load step " +
            std::to_string(step - 1);
   return "Newton: " + singular + where + ": either a boundary condition is missing (the body can move without "
-         "deforming: `run` warns before the solve when the supports leave a rigid motion free), or the body yields into a mechanism at this step's "
-         "load (more load steps show where)";
+         "deforming: `run` warns before the solve when the supports leave a rigid motion free), or the body yields "
+         "into a mechanism at this step's load (more load steps show where)";
 }
 
 }  // namespace perinom::detail
