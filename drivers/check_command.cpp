@@ -140,7 +140,7 @@ int check(const Options& opt) {
     // The Jacobian's pattern, as the Newton solver will build it (values included).
     const StaticSystem system(p.physics(), p.loading);
     const std::size_t bytes = system.jacobian().memory_bytes();
-    std::printf("    %-30s %10.2f MiB  (%zu nonzeros; KLU's factors come on top, typically\n"
+    std::printf("    %-30s %10.2f MiB  (%zu nonzeros; the LU factors come on top, typically\n"
                 "    %-30s several times this in 2-D and more in 3-D)\n",
                 "Newton Jacobian (CSR, 64-bit)", mb(bytes), system.jacobian().col.size(), "");
     total += bytes;

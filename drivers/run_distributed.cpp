@@ -107,12 +107,13 @@ int run_distributed(const Options& opt) {
   timer.start("read scene");
   Scene scene = read_scene(opt.positional[0], opt.overrides);
   require_distributed(scene, opt);
-  if ((scene.solver.type == "newton" || scene.solver.check == "newton") && scene.solver.linear_solver == "klu") {
-    // KLU factors on one process; MUMPS is the direct solver over the ranks (the same
-    // Newton steps to rounding).
+  const std::string serial = scene.solver.linear_solver;
+  if ((scene.solver.type == "newton" || scene.solver.check == "newton") && (serial == "klu" || serial == "umfpack")) {
+    // KLU and UMFPACK factor on one process; MUMPS is the direct solver over the ranks (the
+    // same Newton steps to rounding).
     scene.solver.linear_solver = "mumps";
-    std::printf("perinom: solver.linear_solver: klu factors on one process; over %d ranks Newton's linear solver "
-                "is mumps\n", world.size);
+    std::printf("perinom: solver.linear_solver: %s factors on one process; over %d ranks Newton's linear solver "
+                "is mumps\n", serial.c_str(), world.size);
   }
   const std::string dir = !opt.out.empty() ? opt.out : "out/" + scene.name;
   std::optional<RunFolder> folder;

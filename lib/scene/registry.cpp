@@ -114,7 +114,7 @@ std::vector<SolverEntry> make_solvers() {
                       {"max_iterations", std::to_string(newton_defaults.max_iterations), ""},
                       {"load_steps", std::to_string(d.load_steps), ""},
                       {"line_search", d.line_search ? "true" : "false", ""},
-                      {"linear_solver", d.linear_solver, "klu | mumps | gamg (PETSc)"},
+                      {"linear_solver", d.linear_solver, "umfpack | klu | mumps | gamg (PETSc)"},
                       {"step_tolerance", text(d.step_tolerance), ""}},
                      newton_defaults, true, true);
   newton.jacobian = true;

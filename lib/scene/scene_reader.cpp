@@ -295,20 +295,21 @@ void read_solver(Fields f, Scene& s) {
   v.step_tolerance = f.number("step_tolerance", v.step_tolerance);
   if (!(v.step_tolerance > 0.0)) f.fail("step_tolerance", "must be positive");
   v.linear_solver = f.text("linear_solver", v.linear_solver);
-  if (v.linear_solver != "klu" && v.linear_solver != "mumps" && v.linear_solver != "gamg")
-    f.fail("linear_solver", "must be klu, mumps or gamg");
+  if (v.linear_solver != "klu" && v.linear_solver != "umfpack" && v.linear_solver != "mumps" &&
+      v.linear_solver != "gamg")
+    f.fail("linear_solver", "must be klu, umfpack, mumps or gamg");
   v.check = f.text("check", "none");
   if (v.check != "none" && v.check != "newton") f.fail("check", "must be none or newton");
   if (v.check == "newton" && v.type != "adr" && v.type != "lbc")
     f.fail("check", "the Newton check compares static answers: it needs solver.type adr or lbc");
   // Only where a Newton solve will read it (other solvers ignore it, as other solvers' keys).
-  const bool petsc = v.linear_solver != "klu" && (newton || v.check == "newton");
+  const bool petsc = (v.linear_solver == "mumps" || v.linear_solver == "gamg") && (newton || v.check == "newton");
   if (petsc && !petsc_available())
     f.fail("linear_solver", v.linear_solver + " needs PETSc, and this perinom was built without it (install "
                             "petsc-dev and rebuild)");
   if (petsc && (s.model.formulation == "improved" || s.model.formulation == "strong"))
     f.fail("linear_solver", v.linear_solver + " solves the Galerkin-reduced system; the " + s.model.formulation +
-                                " formulation collocates its constraints: use klu");
+                                " formulation collocates its constraints: use umfpack or klu");
   v.yield_tolerance = f.number("yield_tolerance", v.yield_tolerance);
   if (!(v.yield_tolerance > 0.0)) f.fail("yield_tolerance", "must be positive");
   v.max_rounds = f.small_integer("max_rounds", v.max_rounds);

@@ -16,6 +16,7 @@
 #include "perinom/solvers/jacobian.hpp"
 #include "perinom/solvers/vector_ops.hpp"
 #include "singular_stiffness.hpp"
+#include "umfpack_linear_solver.hpp"
 
 namespace perinom {
 namespace {
@@ -70,6 +71,17 @@ double reciprocal_pivot_ratio(SUNLinearSolver ls) {
   return common->rcond;
 }
 
+/// The factorization's findings, from whichever of the two direct solvers ran.
+detail::FactorState factor_state(SUNLinearSolver ls, bool umfpack) {
+  if (umfpack) return detail::umfpack_factor_state(ls);
+  detail::FactorState state;
+  const sun_klu_common* common = SUNLinSol_KLUGetCommon(ls);
+  state.singular = common && common->status == KLU_SINGULAR;
+  state.out_of_memory = common && common->status == KLU_OUT_OF_MEMORY;
+  state.rcond = reciprocal_pivot_ratio(ls);
+  return state;
+}
+
 }  // namespace
 
 namespace detail {
@@ -86,7 +98,9 @@ void append_reactions(TangentModel& model, const Loading& loading, double s, con
 SolveReport solve_newton(TangentModel& model, const Loading& loading,
                          const NewtonOptions& opt, std::vector<double>& u, Progress* progress) {
   static_assert(sizeof(sunindextype) == sizeof(std::int64_t), "SUNDIALS must use 64-bit indices");
-  if (opt.linear_solver != "klu") return detail::solve_newton_petsc(model, loading, opt, u, progress);
+  const bool umfpack = opt.linear_solver == "umfpack";
+  if (!umfpack && opt.linear_solver != "klu") return detail::solve_newton_petsc(model, loading, opt, u, progress);
+  const char* factorizer = umfpack ? "UMFPACK" : "KLU";
   u.resize(model.dofs(), 0.0);
   StaticSystem system(model, loading);
   // The unknowns: u, then the multipliers of face-located constraints (kept across steps as
@@ -109,12 +123,13 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
   N_VConst(1.0, ones.get());
   const CsrMatrix& A = system.jacobian();
   Matrix J(SUNSparseMatrix(n, n, static_cast<sunindextype>(A.col.size()), CSR_MAT, ctx.get()));
-  LinearSolver ls(SUNLinSol_KLU(y.get(), J.get(), ctx.get()));
+  LinearSolver ls(umfpack ? detail::umfpack_linear_solver(ctx.get()) : SUNLinSol_KLU(y.get(), J.get(), ctx.get()));
   if (!J || !ls) throw SolveError("Newton: out of memory for the Jacobian (" + std::to_string(A.col.size()) + " nonzeros)");
-  // AMD (on A + A^T) rather than SUNDIALS' default COLAMD: the Jacobian's pattern is
+  // KLU: AMD (on A + A^T) rather than SUNDIALS' default COLAMD: the Jacobian's pattern is
   // symmetric, and AMD fills less (plate with a hole, 4,968 dofs: L + U 4.6 M entries
   // against 5.5 M) and factorizes 15-18% faster (plate with a hole, biaxial test 3).
-  check(SUNLinSol_KLUSetOrdering(ls.get(), 0), "SUNLinSol_KLUSetOrdering");
+  // (UMFPACK's default strategy also orders a symmetric pattern by AMD on A + A^T.)
+  if (!umfpack) check(SUNLinSol_KLUSetOrdering(ls.get(), 0), "SUNLinSol_KLUSetOrdering");
   Kinsol kin(KINCreate(ctx.get()));
   Data data{&system, 0.0};
   check(KINInit(kin.get(), residual, y.get()), "KINInit");
@@ -138,6 +153,7 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
   sample.load_steps = opt.load_steps;
   std::vector<double> u_start(n);  // the last state that passed the guard
   for (int step = 1; step <= opt.load_steps; ++step) {
+    if (opt.before_step) opt.before_step(step);
     u_start = u;
     data.s = static_cast<double>(step) / opt.load_steps;
     // Scale the residual by its size at the start of the step, so the tolerance is relative.
@@ -149,15 +165,15 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
     long iterations = 0;
     KINGetNumNonlinSolvIters(kin.get(), &iterations);
     rep.iterations += iterations;
-    const sun_klu_common* common = SUNLinSol_KLUGetCommon(ls.get());
-    if (common && common->status == KLU_OUT_OF_MEMORY)
-      throw SolveError("Newton: KLU ran out of memory factorizing the Jacobian (" +
+    const detail::FactorState factored = factor_state(ls.get(), umfpack);
+    if (factored.out_of_memory)
+      throw SolveError(std::string("Newton: ") + factorizer + " ran out of memory factorizing the Jacobian (" +
                        std::to_string(A.col.size()) + " nonzeros before fill); use solver.type adr, "
                        "or a smaller horizon ratio (the Jacobian couples particles two horizons apart)");
-    const double rcond = reciprocal_pivot_ratio(ls.get());
-    if ((flag == KIN_LSETUP_FAIL && common && common->status == KLU_SINGULAR) || (iterations > 0 && rcond < 1e-13)) {
+    const double rcond = factored.rcond;
+    if ((flag == KIN_LSETUP_FAIL && factored.singular) || (iterations > 0 && rcond < 1e-13)) {
       char factor[64];
-      std::snprintf(factor, sizeof factor, "KLU reciprocal pivot ratio %.1e", rcond);
+      std::snprintf(factor, sizeof factor, "%s reciprocal pivot ratio %.1e", factorizer, rcond);
       rep.failure = detail::singular_stiffness(model, step, factor);  // (an elastic body's throws: a missing support)
       std::copy(u_start.begin(), u_start.end(), u.begin());
       break;

@@ -212,7 +212,7 @@ void configure(SNES snes, Mat J, const Reduced& sys, const NewtonOptions& opt) {
           "KSPSetTolerances");
     set_near_null_space(J, sys, rigid_body_modes(opt, sys.model));
   } else {
-    throw InputError("solver.linear_solver: must be klu, mumps or gamg (got " + opt.linear_solver + ")");
+    throw InputError("solver.linear_solver: must be klu, umfpack, mumps or gamg (got " + opt.linear_solver + ")");
   }
   SNESLineSearch ls = nullptr;
   check(SNESGetLineSearch(snes, &ls), "SNESGetLineSearch");
@@ -240,7 +240,7 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
   if (loading.collocated)
     throw InputError("solver.linear_solver: " + opt.linear_solver +
                      " solves the Galerkin-reduced system, and the improved and strong formulations collocate their "
-                     "constraints; use linear_solver klu");
+                     "constraints; use linear_solver umfpack or klu");
   start_petsc(petsc_options);
   u.resize(model.dofs(), 0.0);
   Reduced sys(model, loading);
@@ -281,6 +281,7 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
   Owned<Vec, VecDestroy> x_start;
   check(VecDuplicate(x.p, &x_start.p), "VecDuplicate");
   for (int step = 1; step <= opt.load_steps; ++step) {
+    if (opt.before_step) opt.before_step(step);
     check(VecCopy(x.p, x_start.p), "VecCopy");
     sys.s = static_cast<double>(step) / opt.load_steps;
     const PetscErrorCode solved = SNESSolve(snes.p, nullptr, x.p);

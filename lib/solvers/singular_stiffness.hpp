@@ -1,5 +1,5 @@
 #pragma once
-/// @file What a singular Newton stiffness means, said once for KLU and PETSc.
+/// @file What a singular Newton stiffness means, said once for KLU, UMFPACK and PETSc.
 #include <string>
 
 #include "perinom/models/model.hpp"

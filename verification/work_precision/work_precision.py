@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Work against precision: ADR at several tolerances against Newton (KINSOL + KLU; on the
+"""Work against precision: ADR at several tolerances against Newton (KINSOL + UMFPACK; on the
 plate also Newton through PETSc with MUMPS and with GAMG, solver.linear_solver), on
   - the uniaxial compression plate (examples/uniaxial_compression.yaml, 2-D, dx = 1 mm), with
     errors against the converged Newton answer and against the CalculiX reference;
@@ -93,7 +93,7 @@ def main():
         if adr[0]["err_fem"] is not None:
             ax.loglog([r["time"] for r in adr], [r["err_fem"] for r in adr], "s--", label="ADR vs CalculiX (top-centre)")
             ax.axhline(st["rows"][0]["err_fem"], color="gray", ls=":", label="Newton vs CalculiX")
-        ax.axvline(st["rows"][0]["time"], color="k", label="Newton (KLU) solve time")
+        ax.axvline(st["rows"][0]["time"], color="k", label="Newton (UMFPACK) solve time")
         for r, style in zip([r for r in st["rows"] if r["solver"].startswith("newton (")], ("--", "-.")):
             ax.axvline(r["time"], color="k", ls=style, label=f"{r['solver']} solve time")
         for r in adr:

@@ -91,7 +91,7 @@ struct SolverSpec {
   double ramp_time = VerletOptions{}.ramp_time;
   std::int64_t history_every = AdrOptions{}.history_every;
   bool line_search = NewtonOptions{}.line_search;        ///< Newton
-  std::string linear_solver = NewtonOptions{}.linear_solver;  ///< Newton: klu | mumps | gamg
+  std::string linear_solver = NewtonOptions{}.linear_solver;  ///< Newton: umfpack | klu | mumps | gamg
   double step_tolerance = NewtonOptions{}.step_tolerance;  ///< Newton: KINSOL's scaled step tolerance
   std::string check = "none"; ///< "newton": also solve with Newton and report the difference
   double yield_tolerance = LoadPathOptions{}.yield_tolerance;  ///< LBC: relative violation of the yield condition that flags

@@ -21,7 +21,7 @@ namespace perinom {
 ///      particles whose trial leaves the yield surface, commit when no new one is flagged;
 /// every_iteration: ADR with the return map committed after every iteration (the explicit
 ///      scheme that yields falsely; for comparison);
-/// newton: KINSOL + KLU on each load step with the consistent tangent, commit after it.
+/// newton: KINSOL (UMFPACK or KLU) on each load step with the consistent tangent, commit after it.
 enum class LoadPathScheme { lbc, every_iteration, newton };
 /// Parses "lbc", "adr", "newton"; false if unknown.
 bool parse_load_path_scheme(const std::string& solver_type, LoadPathScheme& s);

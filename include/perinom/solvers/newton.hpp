@@ -1,6 +1,6 @@
 #pragma once
-/// @file Newton's method on the assembled Jacobian: SUNDIALS KINSOL with the KLU sparse
-/// direct solver (THEORY sec. 8), the design's independent check of the explicit solvers.
+/// @file Newton's method on the assembled Jacobian: SUNDIALS KINSOL with a sparse direct
+/// solver, UMFPACK or KLU (THEORY sec. 8), the design's independent check of the explicit solvers.
 #include <functional>
 #include <string>
 #include <vector>
@@ -18,27 +18,31 @@ struct NewtonOptions {
   int max_iterations = 50;        ///< per load step
   int load_steps = 1;
   bool line_search = true;
-  /// The linear solver of each Newton step: "klu" (KINSOL with KLU on the Jacobian with
-  /// multipliers), or through PETSc SNES on the Galerkin-reduced system K_T = T^T K T
+  /// The linear solver of each Newton step: "umfpack" or "klu" (KINSOL on the Jacobian with
+  /// multipliers, factored by UMFPACK's multifrontal LU, BLAS-3 on dense fronts, or by KLU's
+  /// left-looking sparse LU: the same steps to rounding; umfpack_linear_solver.hpp), or
+  /// through PETSc SNES on the Galerkin-reduced system K_T = T^T K T
   /// (direct.hpp): "mumps" (MUMPS's multifrontal LU) or "gamg" (PETSc's algebraic multigrid
   /// preconditioning conjugate gradients, GMRES for a model with history). The PETSc ones
   /// need the Galerkin form of any face-located constraint (not the improved or strong
   /// formulation) and a build with PETSc. On a model spread over MPI ranks
   /// (DistributedModel) they solve over the ranks (face-located constraints there in the
-  /// multiplier form, "mumps" only); "klu" factors on one process (mpirun's driver takes
-  /// "mumps" for it).
-  std::string linear_solver = "klu";
+  /// multiplier form, "mumps" only); "umfpack" and "klu" factor on one process (mpirun's
+  /// driver takes "mumps" for them).
+  std::string linear_solver = "umfpack";
   /// gamg: the particles' positions (point-major, dimension values each) of a solid, whose
   /// rigid-body modes then form the near-null space; empty: PETSc's default (constants).
   std::vector<double> positions;
   int dimension = 0;
+  /// Runs as each load step begins (the plastic path's ModelHistory::begin_step).
+  std::function<void(int step)> before_step;
   /// Runs after each converged load step with its number, the Newton iterations it took and
   /// its relative residual (the plastic path commits here).
   std::function<void(int step, const std::vector<double>& u, long iterations, double residual)> after_step;
 };
 
 /// Solves the static problem of any model with tangent rows (correspondence, thin plate) in load steps s = 1/n ... 1. The Jacobian's pattern is built
-/// once and KLU's symbolic analysis is kept across iterations and load steps; only the
+/// once and the factorization's symbolic analysis is kept across iterations and load steps; only the
 /// numeric factorization is redone. report.residual is the relative residual as ADR
 /// defines it (|R_free| over the load norm), report.iterations the Newton iterations over
 /// all steps. Throws InputError when the stiffness is singular (a body free to move
