@@ -33,7 +33,7 @@ std::string plastic_collapse_note(const Problem& p) {
   if (p.scene.model.stabilization_scale == "secant")
     return "material drucker_prager, model.stabilization_scale secant: the stabilization follows each particle's "
            "secant shear stiffness, and a collapse load levels off (Prandtl's strip footing, verification/footing: "
-           "1.20 / 1.14 / 1.08 times (2 + pi) k at a settlement of 15% of its half-width with 4 / 8 / 16 particles "
+           "1.20 / 1.15 / 1.08 times (2 + pi) k at a settlement of 15% of its half-width with 4 / 8 / 16 particles "
            "across it, rising 0.1-1.3% of the limit load over the last third, where CalculiX's CPE8R levels off at "
            "1.04 / 1.02 / 1.01; the elastic default: 1.56 / 1.40 / 1.26, still rising; docs/verification/README.md)";
   return "material drucker_prager: a body that collapses by a mechanism (a footing, a slope) is over-stiff in "
@@ -43,7 +43,7 @@ std::string plastic_collapse_note(const Problem& p) {
          "where CalculiX's CPE8R levels off at 1.04 / 1.02 / 1.01 (docs/verification/README.md): a limit load read "
          "from such a run is too high, more so the coarser the dx. The stabilization (model.stabilization, elastic) "
          "resists the mechanism's flow: model.stabilization_scale: secant (S follows each particle's secant shear "
-         "stiffness) levels off at 1.20 / 1.14 / 1.08 by 15%";
+         "stiffness) levels off at 1.20 / 1.15 / 1.08 by 15%";
 }
 
 void print_body_notes(const Problem& p) {

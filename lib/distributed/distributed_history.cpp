@@ -78,6 +78,8 @@ void DistributedModel::commit(const double* u) {
   share_history(local_history().save_history());
 }
 
+void DistributedModel::begin_step() { local_history().begin_step(); }
+
 void DistributedModel::commit_trial() {
   local_history().commit_trial();
   share_history(local_history().save_history());

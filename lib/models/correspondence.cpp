@@ -310,8 +310,9 @@ void CorrespondenceModel::commit(const double* u) {
   G_.apply(u, dim_, H_.data());
   for_each_law_block(particles(), [&](std::size_t lo, std::size_t hi) { law_->stresses(lo, hi, H_.data(), Q_.data()); });
   law_->commit();
-  follow_secant_stiffness();
 }
+
+void CorrespondenceModel::begin_step() { follow_secant_stiffness(); }
 
 void CorrespondenceModel::follow_secant_stiffness() {
   if (!secant_) return;

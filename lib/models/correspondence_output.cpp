@@ -186,11 +186,9 @@ std::size_t CorrespondenceModel::values_per_particle() const { return law_->hist
 HistoryState CorrespondenceModel::save_history() const { return law_->history()->save_history(); }
 void CorrespondenceModel::restore_history(const HistoryState& s) {
   law_->history()->restore_history(s);
-  follow_secant_stiffness();
 }
 void CorrespondenceModel::reset_history() {
   law_->history()->reset_history();
-  follow_secant_stiffness();
 }
 
 }  // namespace perinom

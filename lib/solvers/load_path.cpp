@@ -211,6 +211,9 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
         nopt.load_steps = stage.steps;
         std::vector<double> xi0 = plastic_strains(model);
         double t0 = wall_seconds();
+        nopt.before_step = [&](int) {
+          if (plastic) plastic->begin_step();
+        };
         nopt.after_step = [&](int step, const std::vector<double>& un, long iterations, double residual) {
           if (plastic) plastic->commit(un.data());
           LoadStepRecord r;
@@ -244,6 +247,7 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
       std::vector<double> u_prev = resumed_stage ? resume->u_prev : u;
       for (int step = resumed_stage ? first_step : 1; step <= stage.steps; ++step) {
         const double t0 = wall_seconds();
+        if (plastic) plastic->begin_step();
         double last_increment = 0.0;  // its norm, for a failed balance's message
         if (step > 1) {
           for (std::size_t k = 0; k < u.size(); ++k) {

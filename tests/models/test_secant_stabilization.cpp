@@ -67,8 +67,8 @@ TEST_CASE("the secant ratio is 1 while elastic and k / (G gamma) in simple shear
   CHECK(r[2] == Approx(k / (G * gammas[2])).epsilon(1e-9));  // 0.2
 }
 
-TEST_CASE("a secant stabilization changes the force only where the committed state has yielded, and restores with "
-          "the history",
+TEST_CASE("a secant stabilization changes the force only where the committed state has yielded, as the next step "
+          "begins, and follows the history",
           "[models]") {
   const PointCloud c = test::lattice(2, 8, 0.25);
   const Families f = radius_families(c, 3.015);
@@ -96,25 +96,33 @@ TEST_CASE("a secant stabilization changes the force only where the committed sta
     secant.internal_force(u.data(), fs.data());
     CHECK(max_difference(fp, fs) <= 1e-11 * test::max_abs(fp));
     plain.commit(u.data()), secant.commit(u.data());
+    // The commit keeps the force the state was balanced with (its reactions are the balance's).
+    std::vector<double> after(u.size());
+    secant.internal_force(u.data(), after.data());
+    CHECK(after == fs);
     const std::vector<double> xi = secant.history_variable();
     const std::size_t yielded = static_cast<std::size_t>(std::count_if(xi.begin(), xi.end(), [](double v) { return v > 0.0; }));
     INFO(yielded << " of " << c.size() << " particles yielded");
     REQUIRE(yielded > 0);
     REQUIRE(yielded < c.size());
-    // At the committed state a further non-affine increment meets less stabilization.
+    // As the next step begins, a further non-affine increment meets less stabilization.
+    plain.begin_step(), secant.begin_step();
     std::vector<double> v(u);
     for (std::size_t i = 0; i < c.size(); ++i) v[i * 2 + 1] += 1e-4 * std::sin(2.0 * c.x[i * 2]) * std::cos(1.5 * c.x[i * 2 + 1]);
     plain.internal_force(v.data(), fp.data());
     secant.internal_force(v.data(), fs.data());
     CHECK(max_difference(fp, fs) > 1e-3 * test::max_abs(fp));
-    // Saved, reset (factors back to 1), restored (factors back): the force follows the history.
+    // Saved, reset (factors back to 1 as a step begins), restored (factors back): the force
+    // follows the history.
     const HistoryState saved = secant.save_history();
     std::vector<double> before(fs), virgin(u.size()), fresh(u.size());
     secant.reset_history(), plain.reset_history();
+    secant.begin_step(), plain.begin_step();
     secant.internal_force(v.data(), virgin.data());
     plain.internal_force(v.data(), fresh.data());
     CHECK(max_difference(virgin, fresh) <= 1e-11 * test::max_abs(fresh));
     secant.restore_history(saved);
+    secant.begin_step();
     secant.internal_force(v.data(), fs.data());
     CHECK(fs == before);
   }

@@ -64,6 +64,7 @@ class DistributedModel : public TangentModel, public ModelHistory {
   void reset_history() override;
   void commit(const double* u) override;
   void commit_trial() override;
+  void begin_step() override;
 
  private:
   LocalModel& local_;

@@ -68,7 +68,7 @@ struct CorrespondenceOptions {
   ///    weights serve only to assemble S and are not kept) or matrix_free (the fit is kept).
   int operator_order = 1;
   /// With plasticity: each particle's stabilization follows its committed secant shear
-  /// stiffness (c_i times PlasticPoints::secant_ratios, updated at every commit), so S does
+  /// stiffness (c_i times PlasticPoints::secant_ratios, set as each load step begins), so S does
   /// not resist plastic flow as an elastic body would. Needs a matrix-free S (automatic
   /// storage chooses it): operator order 2, or order 1 with the classical formulation.
   bool secant_stabilization = false;
@@ -240,6 +240,7 @@ class CorrespondenceModel : public LocalModel, public ModelHistory {
   // nullptr otherwise). commit(u) is the one above.
   void set_history_mode(HistoryMode mode) override;
   void commit_trial() override;
+  void begin_step() override;
   std::size_t flag_violations(double tolerance) override;
   std::vector<double> history_variable() const override;
   std::size_t values_per_particle() const override;

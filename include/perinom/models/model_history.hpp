@@ -51,6 +51,11 @@ class ModelHistory : public LawHistory {
   /// Commits the trial states the last internal_force kept, without evaluating again (the
   /// explicit scheme that commits after every iteration).
   virtual void commit_trial() = 0;
+  /// Called as each load step begins, from the committed state it starts at. A model whose
+  /// operators follow that state (a secant stabilization) sets them here, not at commit, so
+  /// a balanced state keeps the force it was balanced with until the next step starts (its
+  /// reactions and equilibrium are the balance's).
+  virtual void begin_step() {}
 };
 
 }  // namespace perinom
