@@ -2,8 +2,9 @@
 # Installs perinom's build and test dependencies from Debian packages (run as root).
 set -euo pipefail
 # libopenblas0-pthread: an optimized BLAS behind libblas.so.3 for CHOLMOD's supernodal
-# Cholesky (solver.type direct, the stability check); the reference BLAS gives the same
-# answers, 2.3 times slower on the 3-D cantilever at 8 particles through the thickness.
+# Cholesky (solver.type direct, the stability check) and UMFPACK's frontal matrices (Newton);
+# the reference BLAS gives the same answers, 2.3 times slower on the 3-D cantilever at 8
+# particles through the thickness (direct).
 # petsc-dev and openmpi-bin: Newton through PETSc (solver.linear_solver mumps | gamg; PETSc
 # 3.18 with MUMPS and hypre), found by CMake through pkg-config; the library builds without
 # them and then refuses those solvers by name.
