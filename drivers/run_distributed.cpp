@@ -89,8 +89,6 @@ void require_distributed(const Scene& s, const Options& opt) {
     refuse("solver.type", s.solver.type);
   if (s.damage) refuse("damage", "bond breaking");
   if (!s.precracks.empty()) refuse("precracks", "a precrack");
-  // (Each rank's families reach its ghosts, whose committed states the secant scale would read.)
-  if (s.model.stabilization_scale != "elastic") refuse("model.stabilization_scale", "a secant stabilization");
   if (s.solver.check != "none" && s.load_path()) refuse("solver.check", "the " + s.solver.check + " check of a load path");
   if (s.output.checkpoint_every > 0) refuse("output.checkpoint_every", "a checkpoint");
 }
@@ -297,8 +295,9 @@ int run_distributed(const Options& opt) {
     std::printf("perinom: %lld steps to t = %.6e s (stable step %.3e s) on %d ranks; results in %s\n",
                 static_cast<long long>(rep.iterations), rep.end_time, rep.stable_time_step, world.size, dir.c_str());
   else if (scene.load_path())
-    std::printf("perinom: %lld load steps, %lld ADR iterations in all on %d ranks; results in %s\n",
-                static_cast<long long>(steps_done), static_cast<long long>(rep.iterations), world.size, dir.c_str());
+    std::printf("perinom: %lld load steps, %lld %s iterations in all on %d ranks; results in %s\n",
+                static_cast<long long>(steps_done), static_cast<long long>(rep.iterations),
+                solver_of(scene).iterations_of.c_str(), world.size, dir.c_str());
   else
     std::printf("perinom: %s after %lld iterations (residual %.3e) on %d ranks; results in %s\n",
                 rep.converged ? "converged" : "NOT converged", static_cast<long long>(rep.iterations), rep.residual,
