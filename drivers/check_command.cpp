@@ -123,7 +123,9 @@ int check(const Options& opt) {
                   "modulus, %s influence, delta = %.4g m the median family radius)\n",
                   d->s_c, d->G_c, influence_name(scene.discretization.weight), d->G_c_delta);
   }
-  std::printf("  solver          %s\n", scene.solver.type.c_str());
+  const bool newton_solve = scene.solver.type == "newton" || scene.solver.check == "newton";
+  std::printf("  solver          %s%s%s\n", scene.solver.type.c_str(),
+              newton_solve ? ", Newton's linear solver " : "", newton_solve ? scene.solver.linear_solver.c_str() : "");
   std::printf("  assembled operators and fields:\n");
   std::size_t total = 0;
   const Model& model = p.physics();
