@@ -169,7 +169,8 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
     if (factored.out_of_memory)
       throw SolveError(std::string("Newton: ") + factorizer + " ran out of memory factorizing the Jacobian (" +
                        std::to_string(A.col.size()) + " nonzeros before fill); use solver.type adr, "
-                       "or a smaller horizon ratio (the Jacobian couples particles two horizons apart)");
+                       "solver.linear_solver gamg (PETSc's multigrid: no factors), or a smaller horizon ratio "
+                       "(the Jacobian couples particles two horizons apart)");
     const double rcond = factored.rcond;
     if ((flag == KIN_LSETUP_FAIL && factored.singular) || (iterations > 0 && rcond < 1e-13)) {
       char factor[64];
