@@ -6,7 +6,8 @@ docs/verification/formulation.md.
 Cases (scenes in this folder, references from verification/fem/):
   cantilever_2d  plane-stress cantilever, tip u_y, 4, 8, 16 particles through the thickness (Newton)
   cantilever_3d  3-D cantilever, tip u_z, 4 (Newton, all formulations) and 8 (ADR, consistent only:
-                 Newton's KLU on the 3-D order-2 Jacobian does not finish in minutes); 4, 8 and 16
+                 Newton with KLU on the 3-D order-2 Jacobian did not finish in minutes; not retried with
+                 UMFPACK, the default since 2026-12-06); 4, 8 and 16
                  with solver.type direct (CHOLMOD on the reduced stiffness; 16 needs about 15 GB)
   plate_hole     quarter plate with a staircase hole in tension, u_x at (L, 0) and sigma_xx at the
                  hole's top (nearest particle, and reconstructed at the hole edge), dx = R/2.5, R/5, R/10
