@@ -1,11 +1,8 @@
 #include "memory_estimate.hpp"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 #include "perinom/core/error.hpp"
@@ -13,14 +10,6 @@
 
 namespace perinom::cli {
 namespace {
-
-/// A field of a /proc file in kB ("VmHWM:", "MemAvailable:"), in bytes; 0 if absent.
-double proc_kib(const char* file, const std::string& field) {
-  std::ifstream in(file);
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind(field, 0) == 0) return 1024.0 * std::atof(line.c_str() + field.size());
-  return 0.0;
-}
 
 /// Bonds of radius families on an n[0] x n[1] (x n[2]) lattice of spacings h within delta:
 /// each offset o within delta joins prod_a (n_a - |o_a|) ordered pairs. Above 10^7 offsets
@@ -113,18 +102,6 @@ double jacobian_bytes(const Scene& s, double particles, double bonds) {
   const double reach = std::min(std::pow(2.0, d) * bonds / std::max(particles, 1.0), particles);
   return 4.0 * particles * reach * d * d * 16.0;
 }
-
-double available_memory() {
-  double available = proc_kib("/proc/meminfo", "MemAvailable:");
-  rlimit as{};
-  if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY) {
-    const double room = double(as.rlim_cur) - proc_kib("/proc/self/status", "VmSize:");
-    available = available > 0.0 ? std::min(available, room) : room;
-  }
-  return std::max(available, 0.0);
-}
-
-double peak_resident_bytes() { return proc_kib("/proc/self/status", "VmHWM:"); }
 
 void require_memory(const Scene& s, const MemoryEstimate& e, double limit, bool limit_given) {
   const auto mib = [](double b) { return b / 1048576.0; };

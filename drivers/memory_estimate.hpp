@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <string>
 
+#include "perinom/core/memory.hpp"
 #include "perinom/scene/scene.hpp"
 
 namespace perinom::cli {
@@ -30,13 +31,6 @@ MemoryEstimate estimate_memory(const Scene& scene);
 /// rank's local ones), with its factors; 0 when the scene solves no Newton (solver.type,
 /// solver.check).
 double jacobian_bytes(const Scene& scene, double particles, double bonds);
-
-/// The memory a run may take: MemAvailable of /proc/meminfo, bounded by the address-space
-/// limit (ulimit -v) less what the process has mapped. 0 when unknown.
-double available_memory();
-
-/// This process's peak resident size so far (VmHWM of /proc/self/status), in bytes; 0 if unknown.
-double peak_resident_bytes();
 
 /// Prints the estimate and throws an InputError naming the key if it exceeds `limit` bytes
 /// (0: available_memory()). `limit_given` says the limit came from --max-memory.

@@ -135,6 +135,7 @@ int run(const Options& opt) {
   std::printf("perinom: %s: building particles, families and operators\n", scene.name.c_str());
   std::fflush(stdout);
   Problem p = build_problem(scene, &timer);
+  p.memory_limit = opt.max_memory;
   std::printf("perinom: %s: %zu particles, %zu bonds, %d threads, solver %s\n", scene.name.c_str(),
               p.cloud.size(), p.bonds, omp_get_max_threads(), scene.solver.type.c_str());
   if (restart) {

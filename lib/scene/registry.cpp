@@ -228,12 +228,14 @@ void add_positions(NewtonOptions& o, const Problem& p) {
 NewtonOptions newton_options(const Problem& p) {
   NewtonOptions o = newton_options(p.scene.solver);
   add_positions(o, p);
+  o.memory_limit = p.memory_limit;
   return o;
 }
 
 LoadPathOptions load_path_options(const Problem& p) {
   LoadPathOptions o = load_path_options(p.scene.solver);
   add_positions(o.newton, p);
+  o.newton.memory_limit = p.memory_limit;
   return o;
 }
 

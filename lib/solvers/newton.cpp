@@ -15,6 +15,7 @@
 #include "perinom/core/error.hpp"
 #include "perinom/solvers/jacobian.hpp"
 #include "perinom/solvers/vector_ops.hpp"
+#include "factor_memory.hpp"
 #include "singular_stiffness.hpp"
 #include "umfpack_linear_solver.hpp"
 
@@ -130,6 +131,14 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
   // against 5.5 M) and factorizes 15-18% faster (plate with a hole, biaxial test 3).
   // (UMFPACK's default strategy also orders a symmetric pattern by AMD on A + A^T.)
   if (!umfpack) check(SUNLinSol_KLUSetOrdering(ls.get(), 0), "SUNLinSol_KLUSetOrdering");
+  const detail::FactorPrediction factors = detail::predict_lu_factors(A);
+  if (progress) {
+    char what[160];
+    std::snprintf(what, sizeof what, "Newton: %s's LU factors, predicted from AMD's fill: %.3g entries, about %.0f MiB",
+                  factorizer, factors.entries, factors.bytes / 1048576.0);
+    progress->phase(what);
+  }
+  detail::require_factor_memory(factors, A, factorizer, opt.memory_limit);
   Kinsol kin(KINCreate(ctx.get()));
   Data data{&system, 0.0};
   check(KINInit(kin.get(), residual, y.get()), "KINInit");

@@ -58,3 +58,34 @@ TEST_CASE("a scene that would not fit in memory is refused by the key to change"
     require_one_clear_error(perinom(dir, "check scene.yaml --max-memory 12x"), {"--max-memory", "'12x'"});
   }
 }
+
+TEST_CASE("Newton's LU factors are predicted before factoring and refused past --max-memory", "[cli]") {
+  // A body from a point file: nothing is estimated before building, so the limit meets
+  // Newton's own check of its factors (lib/solvers/factor_memory.hpp) first.
+  ScratchDir dir;
+  std::ofstream csv(dir.path / "cloud.csv");
+  csv << "x,y,volume\n";
+  for (int j = 0; j < 12; ++j)
+    for (int i = 0; i < 6; ++i) csv << 0.0005 + 0.001 * i << "," << 0.0005 + 0.001 * j << ",1e-6\n";
+  csv.close();
+  std::ofstream(dir.path / "scene.yaml") << R"(name: points
+dimension: 2
+geometry: {points: cloud.csv}
+discretization: {dx: 0.001, horizon: {ratio: 3.015}}
+material: {type: linear_elastic, E: 1.0e9, nu: 0.25, density: 1000.0}
+model: {formulation: classical}
+boundary:
+  - {region: {box: {min: [0.0, 0.0], max: [0.006, 0.001]}}, fix: [x, y]}
+  - {region: {box: {min: [0.0, 0.011], max: [0.006, 0.012]}}, displacement: {y: 1.0e-6}}
+solver: {type: newton}
+)";
+  const Outcome ok = perinom(dir, "run scene.yaml --out ok");
+  INFO(ok.out << ok.err);
+  REQUIRE(ok.exit_code == 0);
+  CHECK(ok.out.find("perinom: Newton: UMFPACK's LU factors, predicted from AMD's fill: ") != std::string::npos);
+  // The process alone holds more than a megabyte: the factors cannot fit beside it.
+  for (const char* solver : {"umfpack", "klu"})
+    require_one_clear_error(perinom(dir, std::string("run scene.yaml --out small --max-memory 1M --set solver.linear_solver=") + solver),
+                            {"solver.linear_solver: ", "LU factors of the Jacobian", "allowed by --max-memory",
+                             "linear_solver gamg"});
+}

@@ -50,6 +50,9 @@ struct Problem {
   /// consistent formulation, else none): the ranks' parts take their share of the frame's,
   /// and the thin-body note measures the body's thickness on them.
   BoundaryFacets facets;
+  /// The bytes the run may hold (the command line's --max-memory); 0: the memory available.
+  /// Newton's direct solvers check their factors' predicted size against it.
+  double memory_limit = 0.0;
 
   TangentModel& physics() { return *model; }
   const TangentModel& physics() const { return *model; }

@@ -1,0 +1,87 @@
+// Newton's check of its factors' size before it factors (factor_memory.hpp): the fill is
+// AMD's, counted exactly on patterns whose fill is known (none for a band or an arrow whose
+// hub is eliminated last, all of it for a dense matrix), and a factorization that would not
+// fit is refused with an error naming solver.linear_solver, never left to the OOM killer.
+#include <catch2/catch.hpp>
+
+#include <vector>
+
+#include "../../lib/solvers/factor_memory.hpp"
+#include "perinom/core/error.hpp"
+#include "perinom/core/memory.hpp"
+#include "perinom/scene/problem.hpp"
+#include "perinom/scene/registry.hpp"
+#include "perinom/solvers/newton.hpp"
+
+using namespace perinom;
+
+namespace {
+
+/// The pattern of an n x n matrix with the entries (i, j) keep(i, j) says (values 1).
+template <class Keep>
+CsrMatrix pattern(int n, Keep keep) {
+  CsrMatrix A;
+  A.rows = n;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j)
+      if (keep(i, j)) A.col.push_back(j), A.val.push_back(1.0);
+    A.row_ptr.push_back(static_cast<std::int64_t>(A.col.size()));
+  }
+  return A;
+}
+
+}  // namespace
+
+TEST_CASE("the predicted fill of L + U is AMD's: none for a band or an arrow, all for a dense matrix",
+          "[solvers][newton]") {
+  const int n = 60;
+  const CsrMatrix band = pattern(n, [](int i, int j) { return std::abs(i - j) <= 1; });
+  CHECK(detail::predict_lu_factors(band).entries == Approx(3.0 * n - 2.0).epsilon(1e-12));
+  // The hub first: eliminated in that order it fills the whole matrix (n^2 entries); AMD
+  // takes it last and nothing fills.
+  const CsrMatrix arrow = pattern(n, [](int i, int j) { return i == j || i == 0 || j == 0; });
+  CHECK(detail::predict_lu_factors(arrow).entries == Approx(3.0 * n - 2.0).epsilon(1e-12));
+  const CsrMatrix dense = pattern(n, [](int, int) { return true; });
+  const detail::FactorPrediction full = detail::predict_lu_factors(dense);
+  CHECK(full.entries == Approx(double(n) * n).epsilon(1e-12));
+  // The bytes grow with the Jacobian's entries and the factors' (the rates of factor_memory.cpp).
+  CHECK(full.bytes > detail::predict_lu_factors(band).bytes);
+  CHECK(detail::predict_lu_factors(CsrMatrix{}).entries == 0.0);
+}
+
+TEST_CASE("factors that would not fit are refused naming solver.linear_solver", "[solvers][newton]") {
+  const CsrMatrix A = pattern(10, [](int i, int j) { return std::abs(i - j) <= 1; });
+  detail::FactorPrediction f;
+  f.entries = 28.0, f.bytes = 1e6;
+  // A limit (--max-memory) counts what the process holds too.
+  const double held = resident_bytes();
+  REQUIRE(held > 0.0);
+  CHECK_NOTHROW(detail::require_factor_memory(f, A, "UMFPACK", held + 2e6));
+  CHECK_THROWS_AS(detail::require_factor_memory(f, A, "UMFPACK", held + 0.5e6), InputError);
+  CHECK_THROWS_WITH(detail::require_factor_memory(f, A, "KLU", held + 0.5e6),
+                    Catch::StartsWith("solver.linear_solver: KLU's LU factors") &&
+                        Catch::Contains("allowed by --max-memory") && Catch::Contains("linear_solver gamg"));
+  // Without a limit the factors alone meet the memory available now.
+  const double available = available_memory();
+  REQUIRE(available > 0.0);
+  f.bytes = 0.5 * available;
+  CHECK_NOTHROW(detail::require_factor_memory(f, A, "UMFPACK", 0.0));
+  f.bytes = 2.0 * available;
+  CHECK_THROWS_WITH(detail::require_factor_memory(f, A, "UMFPACK", 0.0),
+                    Catch::Contains("of memory available") && Catch::Contains("--max-memory overrides"));
+}
+
+TEST_CASE("Newton refuses, before factoring, a Jacobian whose factors exceed its memory limit", "[solvers][newton]") {
+  Problem p = build_problem(read_scene(PERINOM_SOURCE_DIR "/examples/uniaxial_compression.yaml"));
+  for (const char* solver : {"klu", "umfpack"}) {
+    INFO(solver);
+    std::vector<double> u;
+    NewtonOptions opt;
+    opt.linear_solver = solver;
+    opt.memory_limit = resident_bytes() + 1e6;  // the 2,592-particle plate's factors need about 54 MiB
+    CHECK_THROWS_WITH(solve_newton(p.physics(), p.loading, opt, u),
+                      Catch::StartsWith("solver.linear_solver: ") && Catch::Contains("allowed by --max-memory"));
+    opt.memory_limit = resident_bytes() + 4e9;
+    CHECK(solve_newton(p.physics(), p.loading, opt, u).converged);
+  }
+}
