@@ -132,6 +132,7 @@ std::vector<SolverEntry> make_solvers() {
   direct.solve = [](Problem& p, std::vector<double>& u, const SolveHooks& h) {
     DirectOptions o;
     o.tolerance = p.scene.solver.tolerance;
+    o.memory_limit = p.memory_limit;
     return solve_direct(p.physics(), p.loading, u, o, h.progress);
   };
   SolverEntry lbc = row("lbc", balance, d, true, false);

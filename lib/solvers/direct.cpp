@@ -5,8 +5,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "factor_memory.hpp"
 #include "galerkin.hpp"
 #include "perinom/core/error.hpp"
+#include "perinom/core/memory.hpp"
 #include "perinom/core/parallel.hpp"
 
 namespace perinom {
@@ -45,10 +47,34 @@ SolveReport solve_direct(TangentModel& model, const Loading& loading, std::vecto
   }
   const Eigen::VectorXd rhs = red.T.transpose() * r;
   const Sparse KT(detail::reduced_stiffness(model, detail::TRows(red.T, index)));
-  if (progress) progress->phase("factoring K_T (CHOLMOD supernodal Cholesky)");
-  Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> llt;
+  // (The factor's analysed size is kept in the protected factor of Eigen's wrapper.)
+  struct Llt : Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> {
+    double values() const { return m_cholmodFactor ? double(m_cholmodFactor->xsize) : 0.0; }
+  } llt;
   llt.cholmod().print = 0;
-  llt.compute(KT);
+  llt.analyzePattern(KT);
+  if (llt.info() == Eigen::Success) {
+    const double values = llt.values();  // of the supernodes, their zeros included
+    const double bytes = detail::predict_cholesky_bytes(double(KT.nonZeros()), values);
+    if (progress) {
+      char what[200];
+      std::snprintf(what, sizeof what,
+                    "direct: CHOLMOD's factor, predicted from its analysis: %.3g values in L, about %.0f MiB beside the "
+                    "%.0f MiB the process holds",
+                    values, bytes / 1048576.0, resident_bytes() / 1048576.0);
+      progress->phase(what);
+    }
+    char subject[300];
+    std::snprintf(subject, sizeof subject,
+                  "solver.type: direct: CHOLMOD's Cholesky factor of K_T (%lld unknowns, %.3g entries; %.3g values in L)",
+                  static_cast<long long>(KT.rows()), double(KT.nonZeros()), values);
+    detail::require_factor_memory(bytes, subject,
+                                  "use solver.type adr, or newton with solver.linear_solver gamg (PETSc's multigrid: "
+                                  "no factors), or a larger discretization.dx",
+                                  options.memory_limit);
+  }
+  if (progress) progress->phase("factoring K_T (CHOLMOD supernodal Cholesky)");
+  llt.factorize(KT);
   if (llt.info() != Eigen::Success) {
     rep.failure = "the reduced stiffness K_T is not positive definite (a non-symmetric formulation, or a rigid mode "
                   "the constraints leave free)";

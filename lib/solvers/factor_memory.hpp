@@ -1,10 +1,12 @@
 #pragma once
-/// @file The memory a direct solver's LU factors of a Jacobian will take, predicted from the
-/// pattern before anything is factored, and the refusal of a factorization that would not
-/// fit. A nonlocal Jacobian fills in far beyond its own entries (the 2-D plate at 41k
-/// particles: 1.7e7 entries, 2.3e8 in L + U), so the estimate made before the build, which
-/// knows no ordering, cannot say it; without this check a Newton run too large for the
-/// machine was killed by the kernel's OOM killer with no message and no output.
+/// @file The memory a direct solver's factors will take, predicted from the pattern before
+/// anything is factored, and the refusal of a factorization that would not fit. A nonlocal
+/// stiffness fills in far beyond its own entries (the 2-D plate at 41k particles: 1.7e7
+/// Jacobian entries, 2.3e8 in UMFPACK's L + U), so the estimate made before the build, which
+/// knows no ordering, cannot say it; without this check a Newton or direct run too large for
+/// the machine was killed by the kernel's OOM killer with no message and no output.
+#include <string>
+
 #include "perinom/solvers/jacobian.hpp"
 
 namespace perinom::detail {
@@ -15,16 +17,21 @@ struct FactorPrediction {
   double bytes = 0.0;    ///< the peak resident size the solve adds, Jacobian and factors (measured rates)
 };
 
-/// AMD's fill of A + A^T's pattern: UMFPACK's symmetric strategy and KLU (the AMD ordering
-/// newton.cpp asks for) order by the same AMD, so L + U holds about this many entries when
-/// the pivots stay on the diagonal (on the 2-D plate UMFPACK made 10-12% more, with its
-/// off-diagonal pivots; on the 3-D cantilever 30% fewer, AMD's count being an upper bound).
+/// Newton's LU factors: AMD's fill of A + A^T's pattern. UMFPACK's symmetric strategy and KLU
+/// (the AMD ordering newton.cpp asks for) order by the same AMD, so L + U holds about this many
+/// entries when the pivots stay on the diagonal (on the 2-D plate UMFPACK made 10-12% more,
+/// with its off-diagonal pivots; on the 3-D cantilever 30% fewer, AMD's count being an upper
+/// bound).
 FactorPrediction predict_lu_factors(const CsrMatrix& A);
 
-/// Throws InputError (exit 2, naming solver.linear_solver) when the factors would not fit:
-/// the process's resident size plus the prediction above `limit` bytes, or, with limit 0,
-/// the prediction above the memory available now (nothing is refused when that is unknown).
-void require_factor_memory(const FactorPrediction& factors, const CsrMatrix& A, const char* factorizer,
-                           double limit);
+/// The peak resident size `direct` adds as CHOLMOD factors K_T of `matrix_entries` into a
+/// supernodal L of `factor_values` (its xsize after the analysis), in bytes.
+double predict_cholesky_bytes(double matrix_entries, double factor_values);
+
+/// Throws InputError (exit 2) "<subject> would need about B MiB, and the process holds H MiB,
+/// more than the L MiB ...; <cures>" when the process's resident size plus `bytes` exceeds
+/// `limit` (--max-memory), or, with limit 0, when `bytes` exceeds the memory available now
+/// (nothing is refused when that is unknown). `subject` starts with the key to change.
+void require_factor_memory(double bytes, const std::string& subject, const std::string& cures, double limit);
 
 }  // namespace perinom::detail

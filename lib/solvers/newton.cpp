@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "perinom/core/error.hpp"
+#include "perinom/core/memory.hpp"
 #include "perinom/solvers/jacobian.hpp"
 #include "perinom/solvers/vector_ops.hpp"
 #include "factor_memory.hpp"
@@ -133,12 +134,22 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
   if (!umfpack) check(SUNLinSol_KLUSetOrdering(ls.get(), 0), "SUNLinSol_KLUSetOrdering");
   const detail::FactorPrediction factors = detail::predict_lu_factors(A);
   if (progress) {
-    char what[160];
-    std::snprintf(what, sizeof what, "Newton: %s's LU factors, predicted from AMD's fill: %.3g entries, about %.0f MiB",
-                  factorizer, factors.entries, factors.bytes / 1048576.0);
+    char what[200];
+    std::snprintf(what, sizeof what,
+                  "Newton: %s's LU factors, predicted from AMD's fill: %.3g entries, about %.0f MiB beside the %.0f MiB "
+                  "the process holds",
+                  factorizer, factors.entries, factors.bytes / 1048576.0, resident_bytes() / 1048576.0);
     progress->phase(what);
   }
-  detail::require_factor_memory(factors, A, factorizer, opt.memory_limit);
+  char subject[300];
+  std::snprintf(subject, sizeof subject,
+                "solver.linear_solver: %s's LU factors of the Jacobian (%lld unknowns, %.3g entries; %.3g in L + U by "
+                "AMD's fill)",
+                factorizer, static_cast<long long>(A.rows), double(A.col.size()), factors.entries);
+  detail::require_factor_memory(factors.bytes, subject,
+                                "use solver.linear_solver gamg (PETSc's multigrid: no factors) or mumps (a smaller "
+                                "fill, or more processes under mpirun), solver.type adr, or a larger discretization.dx",
+                                opt.memory_limit);
   Kinsol kin(KINCreate(ctx.get()));
   Data data{&system, 0.0};
   check(KINInit(kin.get(), residual, y.get()), "KINInit");

@@ -300,7 +300,7 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
       check(VecCopy(x_start.p, x.p), "VecCopy");
       break;
     }
-    // The residual as ADR measures it (as the KLU path reports it).
+    // The residual as ADR measures it (as the UMFPACK and KLU path reports it).
     {
       const PetscScalar* a = nullptr;
       check(VecGetArrayRead(x.p, &a), "VecGetArrayRead");

@@ -1,7 +1,8 @@
 // Newton's check of its factors' size before it factors (factor_memory.hpp): the fill is
 // AMD's, counted exactly on patterns whose fill is known (none for a band or an arrow whose
 // hub is eliminated last, all of it for a dense matrix), and a factorization that would not
-// fit is refused with an error naming solver.linear_solver, never left to the OOM killer.
+// fit is refused with an error naming the key to change (solver.linear_solver, solver.type
+// for direct), never left to the OOM killer.
 #include <catch2/catch.hpp>
 
 #include <vector>
@@ -11,6 +12,7 @@
 #include "perinom/core/memory.hpp"
 #include "perinom/scene/problem.hpp"
 #include "perinom/scene/registry.hpp"
+#include "perinom/solvers/direct.hpp"
 #include "perinom/solvers/newton.hpp"
 
 using namespace perinom;
@@ -49,26 +51,27 @@ TEST_CASE("the predicted fill of L + U is AMD's: none for a band or an arrow, al
   CHECK(detail::predict_lu_factors(CsrMatrix{}).entries == 0.0);
 }
 
-TEST_CASE("factors that would not fit are refused naming solver.linear_solver", "[solvers][newton]") {
-  const CsrMatrix A = pattern(10, [](int i, int j) { return std::abs(i - j) <= 1; });
-  detail::FactorPrediction f;
-  f.entries = 28.0, f.bytes = 1e6;
+TEST_CASE("factors that would not fit are refused with the key and the cures", "[solvers][newton]") {
+  const double mib = 1048576.0;
   // A limit (--max-memory) counts what the process holds too.
   const double held = resident_bytes();
   REQUIRE(held > 0.0);
-  CHECK_NOTHROW(detail::require_factor_memory(f, A, "UMFPACK", held + 2e6));
-  CHECK_THROWS_AS(detail::require_factor_memory(f, A, "UMFPACK", held + 0.5e6), InputError);
-  CHECK_THROWS_WITH(detail::require_factor_memory(f, A, "KLU", held + 0.5e6),
-                    Catch::StartsWith("solver.linear_solver: KLU's LU factors") &&
-                        Catch::Contains("allowed by --max-memory") && Catch::Contains("linear_solver gamg"));
+  const std::string key = "solver.linear_solver: KLU's LU factors", cures = "use solver.type adr";
+  CHECK_NOTHROW(detail::require_factor_memory(1.0 * mib, key, cures, held + 2.0 * mib));
+  CHECK_THROWS_AS(detail::require_factor_memory(1.0 * mib, key, cures, held + 0.5 * mib), InputError);
+  CHECK_THROWS_WITH(detail::require_factor_memory(10.0 * mib, key, cures, held + 0.5 * mib),
+                    Catch::StartsWith(key + " would need about 10 MiB, and the process holds ") &&
+                        Catch::Contains("allowed by --max-memory; use solver.type adr") &&
+                        !Catch::Contains("overrides"));
   // Without a limit the factors alone meet the memory available now.
   const double available = available_memory();
   REQUIRE(available > 0.0);
-  f.bytes = 0.5 * available;
-  CHECK_NOTHROW(detail::require_factor_memory(f, A, "UMFPACK", 0.0));
-  f.bytes = 2.0 * available;
-  CHECK_THROWS_WITH(detail::require_factor_memory(f, A, "UMFPACK", 0.0),
-                    Catch::Contains("of memory available") && Catch::Contains("--max-memory overrides"));
+  CHECK_NOTHROW(detail::require_factor_memory(0.5 * available, key, cures, 0.0));
+  CHECK_THROWS_WITH(detail::require_factor_memory(2.0 * available, key, cures, 0.0),
+                    Catch::Contains("of memory available; use solver.type adr (--max-memory overrides the limit)"));
+  // The direct solver's rates grow with K_T's entries and L's.
+  CHECK(detail::predict_cholesky_bytes(2e6, 3e7) > detail::predict_cholesky_bytes(2e6, 1e7));
+  CHECK(detail::predict_cholesky_bytes(2e6, 1e7) > detail::predict_cholesky_bytes(1e6, 1e7));
 }
 
 TEST_CASE("Newton refuses, before factoring, a Jacobian whose factors exceed its memory limit", "[solvers][newton]") {
@@ -78,10 +81,22 @@ TEST_CASE("Newton refuses, before factoring, a Jacobian whose factors exceed its
     std::vector<double> u;
     NewtonOptions opt;
     opt.linear_solver = solver;
-    opt.memory_limit = resident_bytes() + 1e6;  // the 2,592-particle plate's factors need about 54 MiB
+    opt.memory_limit = resident_bytes() + 1e6;  // the 2,592-particle plate's solve adds about 100 MiB
     CHECK_THROWS_WITH(solve_newton(p.physics(), p.loading, opt, u),
                       Catch::StartsWith("solver.linear_solver: ") && Catch::Contains("allowed by --max-memory"));
     opt.memory_limit = resident_bytes() + 4e9;
     CHECK(solve_newton(p.physics(), p.loading, opt, u).converged);
   }
+}
+
+TEST_CASE("direct refuses, after CHOLMOD's analysis, a factor that exceeds its memory limit", "[solvers][direct]") {
+  Problem p = build_problem(read_scene(PERINOM_SOURCE_DIR "/examples/uniaxial_compression.yaml"));
+  std::vector<double> u;
+  DirectOptions opt;
+  opt.memory_limit = resident_bytes() + 1e6;  // the 2,592-particle plate's factor adds about 35 MiB
+  CHECK_THROWS_WITH(solve_direct(p.physics(), p.loading, u, opt),
+                    Catch::StartsWith("solver.type: direct: CHOLMOD's Cholesky factor of K_T (") &&
+                        Catch::Contains("allowed by --max-memory; use solver.type adr"));
+  opt.memory_limit = resident_bytes() + 4e9;
+  CHECK(solve_direct(p.physics(), p.loading, u, opt).converged);
 }

@@ -17,6 +17,11 @@ struct DirectOptions {
   /// |T^T f| (f the external force, F the internal one) must be below this, else the report
   /// says it did not converge.
   double tolerance = 1e-8;
+  /// The bytes the whole process may hold once K_T is factored (the command line's
+  /// --max-memory); 0: the factor alone must fit in the memory available. Checked after
+  /// CHOLMOD's analysis, before the factorization (factor_memory.hpp): a factor that would
+  /// not fit throws InputError naming solver.type.
+  double memory_limit = 0.0;
 };
 
 /// u (resized to model.dofs()) at full load. The report: converged, residual (the check
