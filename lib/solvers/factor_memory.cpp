@@ -67,9 +67,16 @@ void require_factor_memory(double bytes, const std::string& subject, const std::
   const double room = limit > 0.0 ? limit - held : available_memory();
   if (bytes <= 0.0 || (room <= 0.0 && limit <= 0.0) || bytes <= room) return;
   char sizes[300];
-  std::snprintf(sizes, sizeof sizes, " would need about %.0f MiB, and the process holds %.0f MiB, more than the %.0f MiB %s; ",
-                mib(bytes), mib(held), mib(limit > 0.0 ? limit : held + room),
-                limit > 0.0 ? "allowed by --max-memory" : "of memory available");
+  if (limit > 0.0)
+    std::snprintf(sizes, sizeof sizes,
+                  " would need about %.0f MiB beside the %.0f MiB the process holds, more than the %.0f MiB allowed by "
+                  "--max-memory; ",
+                  mib(bytes), mib(held), mib(limit));
+  else
+    std::snprintf(sizes, sizeof sizes,
+                  " would need about %.0f MiB, more than the %.0f MiB of memory available (the process holds %.0f "
+                  "MiB); ",
+                  mib(bytes), mib(room), mib(held));
   throw InputError(subject + sizes + cures + (limit > 0.0 ? "" : " (--max-memory overrides the limit)"));
 }
 

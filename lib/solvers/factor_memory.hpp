@@ -28,10 +28,10 @@ FactorPrediction predict_lu_factors(const CsrMatrix& A);
 /// supernodal L of `factor_values` (its xsize after the analysis), in bytes.
 double predict_cholesky_bytes(double matrix_entries, double factor_values);
 
-/// Throws InputError (exit 2) "<subject> would need about B MiB, and the process holds H MiB,
-/// more than the L MiB ...; <cures>" when the process's resident size plus `bytes` exceeds
-/// `limit` (--max-memory), or, with limit 0, when `bytes` exceeds the memory available now
-/// (nothing is refused when that is unknown). `subject` starts with the key to change.
+/// Throws InputError (exit 2) "<subject> would need about B MiB ...; <cures>" when the
+/// process's resident size plus `bytes` exceeds `limit` (--max-memory), or, with limit 0, when
+/// `bytes` exceeds the memory available now (nothing is refused when that is unknown).
+/// `subject` starts with the key to change.
 void require_factor_memory(double bytes, const std::string& subject, const std::string& cures, double limit);
 
 }  // namespace perinom::detail

@@ -60,7 +60,8 @@ TEST_CASE("factors that would not fit are refused with the key and the cures", "
   CHECK_NOTHROW(detail::require_factor_memory(1.0 * mib, key, cures, held + 2.0 * mib));
   CHECK_THROWS_AS(detail::require_factor_memory(1.0 * mib, key, cures, held + 0.5 * mib), InputError);
   CHECK_THROWS_WITH(detail::require_factor_memory(10.0 * mib, key, cures, held + 0.5 * mib),
-                    Catch::StartsWith(key + " would need about 10 MiB, and the process holds ") &&
+                    Catch::StartsWith(key + " would need about 10 MiB beside the ") &&
+                        Catch::Contains("MiB the process holds, more than the ") &&
                         Catch::Contains("allowed by --max-memory; use solver.type adr") &&
                         !Catch::Contains("overrides"));
   // Without a limit the factors alone meet the memory available now.
@@ -68,7 +69,8 @@ TEST_CASE("factors that would not fit are refused with the key and the cures", "
   REQUIRE(available > 0.0);
   CHECK_NOTHROW(detail::require_factor_memory(0.5 * available, key, cures, 0.0));
   CHECK_THROWS_WITH(detail::require_factor_memory(2.0 * available, key, cures, 0.0),
-                    Catch::Contains("of memory available; use solver.type adr (--max-memory overrides the limit)"));
+                    Catch::Contains("MiB of memory available (the process holds ") &&
+                        Catch::Contains("MiB); use solver.type adr (--max-memory overrides the limit)"));
   // The direct solver's rates grow with K_T's entries and L's.
   CHECK(detail::predict_cholesky_bytes(2e6, 3e7) > detail::predict_cholesky_bytes(2e6, 1e7));
   CHECK(detail::predict_cholesky_bytes(2e6, 1e7) > detail::predict_cholesky_bytes(1e6, 1e7));

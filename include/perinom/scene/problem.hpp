@@ -51,7 +51,8 @@ struct Problem {
   /// and the thin-body note measures the body's thickness on them.
   BoundaryFacets facets;
   /// The bytes the run may hold (the command line's --max-memory); 0: the memory available.
-  /// Newton's direct solvers check their factors' predicted size against it.
+  /// Newton with umfpack or klu, and solver.type direct, check their factors' predicted size
+  /// against it before factoring (lib/solvers/factor_memory.hpp).
   double memory_limit = 0.0;
 
   TangentModel& physics() { return *model; }
