@@ -36,6 +36,12 @@ void StepProgress::update(const ProgressSample& s) {
   last_line_ = now;
 }
 
+void StepProgress::phase(const char* what) {
+  if (!phases_.insert(what).second) return;
+  std::printf("perinom: %s\n", what);
+  std::fflush(stdout);
+}
+
 void add_probe_values(const ProbeReadout& readout, const BoundProbe& probe, double* out) {
   const std::size_t i = probe.particles.at(0);
   out[0] = readout.point(probe);

@@ -1,5 +1,6 @@
 #pragma once
 // perinom run for load-path scenes (plasticity, stages, solver.type lbc).
+#include <set>
 #include <string>
 #include <vector>
 
@@ -27,15 +28,18 @@ struct ProbeHistory {
 
 /// Lines within a long load step (a cascade of breaks, a hard balance) every 10 s, so a run
 /// that spends minutes in one step is seen to be alive; quiet while the steps' own lines
-/// come often enough.
+/// come often enough. A solver's phase line (Newton's predicted factors, once per stage) is
+/// printed the first time its text comes: the balances of every step repeat theirs.
 class StepProgress : public Progress {
  public:
   void update(const ProgressSample& s) override;
+  void phase(const char* what) override;
   /// A step's own line was printed: the next step starts.
   void step_done() { last_line_ = step_start_ = wall_seconds(); }
 
  private:
   double last_line_ = wall_seconds(), step_start_ = last_line_;
+  std::set<std::string> phases_;  // printed already
 };
 
 /// A point probe's columns of a ProbeHistory row (value, von_mises, mean_stress,
