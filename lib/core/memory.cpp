@@ -18,7 +18,51 @@ double proc_kib(const char* file, const std::string& field) {
   return 0.0;
 }
 
+/// The number a cgroup file holds; -1 when it is absent or says "max" (no limit). Version 1
+/// writes "no limit" as a number near 2^63.
+double cgroup_number(const std::string& file) {
+  std::ifstream in(file);
+  std::string word;
+  if (!(in >> word) || word == "max") return -1.0;
+  const double x = std::atof(word.c_str());
+  return x > 0x1p60 ? -1.0 : x;
+}
+
+/// limit - usage of one cgroup folder, or -1 without a limit there.
+double folder_room(const std::string& folder, const char* limit_file, const char* usage_file) {
+  const double limit = cgroup_number(folder + "/" + limit_file);
+  return limit < 0.0 ? -1.0 : std::max(limit - std::max(cgroup_number(folder + "/" + usage_file), 0.0), 0.0);
+}
+
 }  // namespace
+
+double cgroup_room(const std::string& cgroup_file, const std::string& root) {
+  double room = -1.0;
+  auto least = [&](double r) {
+    if (r >= 0.0) room = room < 0.0 ? r : std::min(room, r);
+  };
+  std::ifstream in(cgroup_file);
+  for (std::string line; std::getline(in, line);) {
+    // "0::/path" (version 2) or "N:memory:/path" (version 1, among other controllers).
+    const auto a = line.find(':'), b = a == std::string::npos ? a : line.find(':', a + 1);
+    if (b == std::string::npos) continue;
+    const std::string controllers = line.substr(a + 1, b - a - 1);
+    const bool v2 = line.compare(0, a, "0") == 0 && controllers.empty();
+    if (!v2 && controllers.find("memory") == std::string::npos) continue;
+    std::string path = line.substr(b + 1);
+    const std::string base = v2 ? root : root + "/memory";
+    // The limit may sit on any ancestor (a batch job's, its step's): the least room of all.
+    for (;;) {
+      const std::string folder = base + (path == "/" ? "" : path);
+      least(v2 ? folder_room(folder, "memory.max", "memory.current")
+               : folder_room(folder, "memory.limit_in_bytes", "memory.usage_in_bytes"));
+      if (path.empty() || path == "/") break;
+      const auto slash = path.rfind('/');
+      path = slash == 0 || slash == std::string::npos ? "/" : path.substr(0, slash);
+    }
+  }
+  return room;
+}
 
 double available_memory() {
   double available = proc_kib("/proc/meminfo", "MemAvailable:");
@@ -27,6 +71,9 @@ double available_memory() {
     const double room = double(as.rlim_cur) - proc_kib("/proc/self/status", "VmSize:");
     available = available > 0.0 ? std::min(available, room) : room;
   }
+  // A container's or a batch job's memory limit, which MemAvailable (the host's) does not see.
+  const double cgroup = cgroup_room();
+  if (cgroup >= 0.0) available = available > 0.0 ? std::min(available, cgroup) : cgroup;
   return std::max(available, 0.0);
 }
 
