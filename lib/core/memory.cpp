@@ -28,10 +28,24 @@ double cgroup_number(const std::string& file) {
   return x > 0x1p60 ? -1.0 : x;
 }
 
-/// limit - usage of one cgroup folder, or -1 without a limit there.
-double folder_room(const std::string& folder, const char* limit_file, const char* usage_file) {
+/// A "key value" line's value (bytes) in a cgroup's memory.stat; 0 if absent.
+double stat_bytes(const std::string& file, const std::string& key) {
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(key + " ", 0) == 0) return std::atof(line.c_str() + key.size() + 1);
+  return 0.0;
+}
+
+/// limit - usage of one cgroup folder, or -1 without a limit there. The usage counts the
+/// page cache too; its inactive file pages (`cache_key` in memory.stat) are reclaimed before
+/// the cgroup's OOM killer acts, so they are not taken as used (the working set that
+/// container tools report): a job that has written gigabytes of output is not refused for it.
+double folder_room(const std::string& folder, const char* limit_file, const char* usage_file, const char* cache_key) {
   const double limit = cgroup_number(folder + "/" + limit_file);
-  return limit < 0.0 ? -1.0 : std::max(limit - std::max(cgroup_number(folder + "/" + usage_file), 0.0), 0.0);
+  if (limit < 0.0) return -1.0;
+  const double usage = std::max(cgroup_number(folder + "/" + usage_file), 0.0);
+  const double cache = stat_bytes(folder + "/memory.stat", cache_key);
+  return std::max(limit - std::max(usage - cache, 0.0), 0.0);
 }
 
 }  // namespace
@@ -54,8 +68,8 @@ double cgroup_room(const std::string& cgroup_file, const std::string& root) {
     // The limit may sit on any ancestor (a batch job's, its step's): the least room of all.
     for (;;) {
       const std::string folder = base + (path == "/" ? "" : path);
-      least(v2 ? folder_room(folder, "memory.max", "memory.current")
-               : folder_room(folder, "memory.limit_in_bytes", "memory.usage_in_bytes"));
+      least(v2 ? folder_room(folder, "memory.max", "memory.current", "inactive_file")
+               : folder_room(folder, "memory.limit_in_bytes", "memory.usage_in_bytes", "total_inactive_file"));
       if (path.empty() || path == "/") break;
       const auto slash = path.rfind('/');
       path = slash == 0 || slash == std::string::npos ? "/" : path.substr(0, slash);

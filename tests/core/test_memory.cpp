@@ -1,6 +1,7 @@
 // The memory a run may take includes a container's or a batch job's cgroup limit, which
 // MemAvailable (the host's) does not show: cgroup_room read on a made-up cgroup tree, in
-// both versions, with the limit on the process's own cgroup or an ancestor.
+// both versions, with the limit on the process's own cgroup or an ancestor, and the
+// reclaimable (inactive) page cache not counted as used.
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -30,6 +31,9 @@ TEST_CASE("the room a memory cgroup leaves: version 2, the least over the cgroup
   CHECK(cgroup_room((d.path / "cgroup").string(), root.string()) == 600.0);
   write(root / "job/step/memory.max", "300");  // now the step is the tighter one
   CHECK(cgroup_room((d.path / "cgroup").string(), root.string()) == 200.0);
+  // Inactive page cache is reclaimable: not counted as used.
+  write(root / "job/step/memory.stat", "anon 60\nfile 40\ninactive_file 30\nactive_file 10");
+  CHECK(cgroup_room((d.path / "cgroup").string(), root.string()) == 230.0);
   write(root / "job/memory.max", "max");
   write(root / "job/step/memory.max", "max");
   CHECK(cgroup_room((d.path / "cgroup").string(), root.string()) == -1.0);  // no limit anywhere
@@ -45,8 +49,10 @@ TEST_CASE("the room a memory cgroup leaves: version 1's memory controller, its n
   write(root / "memory/slurm/job_7/memory.limit_in_bytes", "8000");
   write(root / "memory/slurm/job_7/memory.usage_in_bytes", "3000");
   CHECK(cgroup_room((d.path / "cgroup").string(), root.string()) == 5000.0);
-  // Usage above the limit leaves nothing, not a negative room.
-  write(root / "memory/slurm/job_7/memory.usage_in_bytes", "9000");
+  write(root / "memory/slurm/job_7/memory.stat", "cache 2500\ninactive_file 9\ntotal_inactive_file 2000");
+  CHECK(cgroup_room((d.path / "cgroup").string(), root.string()) == 7000.0);
+  // Usage above the limit (less the cache) leaves nothing, not a negative room.
+  write(root / "memory/slurm/job_7/memory.usage_in_bytes", "11000");
   CHECK(cgroup_room((d.path / "cgroup").string(), root.string()) == 0.0);
 }
 

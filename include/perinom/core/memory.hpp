@@ -14,7 +14,8 @@ double available_memory();
 /// The least room (limit less usage, bytes) that the memory cgroups listed in `cgroup_file`
 /// (the format of /proc/self/cgroup) and their ancestors leave under `root`: version 2's
 /// memory.max and memory.current, version 1's memory.limit_in_bytes and
-/// memory.usage_in_bytes under root/memory. -1 when none sets a limit (or none is found).
+/// memory.usage_in_bytes under root/memory; the usage less the inactive file cache of
+/// memory.stat (inactive_file, v1 total_inactive_file), which is reclaimed before an OOM. -1 when none sets a limit (or none is found).
 /// A container or a batch job (Slurm confines a job to its cgroup) is limited here, not in
 /// MemAvailable, which is the host's.
 double cgroup_room(const std::string& cgroup_file = "/proc/self/cgroup", const std::string& root = "/sys/fs/cgroup");
