@@ -28,10 +28,20 @@ std::vector<const BoundProbe*> point_probes(const Problem& p) {
 
 void StepProgress::update(const ProgressSample& s) {
   constexpr double quiet_seconds = 10.0;
+  if (s.step_converged) {  // (Newton: the step's own row follows)
+    newton_base_ = -1;
+    return;
+  }
+  if (s.target <= 0.0 && newton_base_ < 0) newton_base_ = s.iteration - 1;  // the step's first Newton iteration
   const double now = wall_seconds();
   if (now - last_line_ < quiet_seconds) return;
-  std::printf("  ... load step %d/%d still balancing: %lld iterations in it, residual %.3e (target %.1e), %.0f s\n",
-              s.load_step, s.load_steps, static_cast<long long>(s.iteration), s.residual, s.target, now - step_start_);
+  if (s.target > 0.0)
+    std::printf("  ... load step %d/%d still balancing: %lld iterations in it, residual %.3e (target %.1e), %.0f s\n",
+                s.load_step, s.load_steps, static_cast<long long>(s.iteration), s.residual, s.target,
+                now - step_start_);
+  else  // Newton: no residual inside KINSOL's iterations
+    std::printf("  ... load step %d/%d still solving: Newton iteration %lld, %.0f s\n", s.load_step, s.load_steps,
+                static_cast<long long>(s.iteration - newton_base_), now - step_start_);
   std::fflush(stdout);
   last_line_ = now;
 }

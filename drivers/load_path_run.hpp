@@ -40,6 +40,7 @@ class StepProgress : public Progress {
  private:
   double last_line_ = wall_seconds(), step_start_ = last_line_;
   std::set<std::string> phases_;  // printed already
+  std::int64_t newton_base_ = -1;  // Newton's iteration count before the step being solved; -1: none yet
 };
 
 /// A point probe's columns of a ProbeHistory row (value, von_mises, mean_stress,

@@ -42,6 +42,8 @@ void check(int flag, const char* what) {
 struct Data {
   StaticSystem* system;
   double s;
+  Progress* progress = nullptr;
+  ProgressSample* sample = nullptr;  // the load step's; its iteration counts Jacobians
 };
 
 int residual(N_Vector u, N_Vector R, void* user) {
@@ -55,6 +57,10 @@ int residual(N_Vector u, N_Vector R, void* user) {
 
 int jacobian(N_Vector u, N_Vector, SUNMatrix J, void* user, N_Vector, N_Vector) {
   auto* data = static_cast<Data*>(user);
+  if (data->progress) {  // a Jacobian per iteration: the one sign of life inside a long load step
+    ++data->sample->iteration;
+    data->progress->update(*data->sample);
+  }
   data->system->assemble(N_VGetArrayPointer(u));
   const CsrMatrix& A = data->system->jacobian();
   std::memcpy(SM_INDEXPTRS_S(J), A.row_ptr.data(), A.row_ptr.size() * sizeof(sunindextype));
@@ -151,7 +157,10 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
                                 "fill, or more processes under mpirun), solver.type adr, or a larger discretization.dx",
                                 opt.memory_limit);
   Kinsol kin(KINCreate(ctx.get()));
-  Data data{&system, 0.0};
+  ProgressSample sample;
+  sample.limit = 0;  // Newton's iteration count is no measure of the time left
+  sample.load_steps = opt.load_steps;
+  Data data{&system, 0.0, progress, &sample};
   check(KINInit(kin.get(), residual, y.get()), "KINInit");
   check(KINSetUserData(kin.get(), &data), "KINSetUserData");
   check(KINSetLinearSolver(kin.get(), ls.get(), J.get()), "KINSetLinearSolver");
@@ -168,14 +177,12 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
   check(KINSetErrHandlerFn(kin.get(), [](int, const char*, const char*, char*, void*) {}, nullptr), "KINSetErrHandlerFn");
 
   std::vector<double> R(n);
-  ProgressSample sample;
-  sample.limit = 0;  // Newton's iteration count is no measure of the time left
-  sample.load_steps = opt.load_steps;
   std::vector<double> u_start(n);  // the last state that passed the guard
   for (int step = 1; step <= opt.load_steps; ++step) {
     if (opt.before_step) opt.before_step(step);
     u_start = u;
     data.s = static_cast<double>(step) / opt.load_steps;
+    sample.load_step = step, sample.iteration = rep.iterations, sample.residual = 0.0, sample.step_converged = false;
     // Scale the residual by its size at the start of the step, so the tolerance is relative.
     system.residual(z.data(), data.s, R.data());
     double r0 = 0.0;
@@ -221,7 +228,7 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
     rep.history.add({double(step), data.s, double(iterations), rep.residual});
     if (loading.has_supports()) detail::append_reactions(model, loading, data.s, u.data(), fint, reactions, rep.history);
     if (progress) {
-      sample.iteration = rep.iterations, sample.load_step = step, sample.residual = rep.residual;
+      sample.iteration = rep.iterations, sample.residual = rep.residual, sample.step_converged = true;
       progress->update(sample);
     }
     // A stalled line search is accepted where the run's own measure (ADR's relative residual,

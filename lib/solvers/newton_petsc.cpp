@@ -342,6 +342,7 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
     if (loading.has_supports()) append_reactions(model, loading, sys.s, u.data(), fint, reactions, rep.history);
     if (progress) {
       sample.iteration = rep.iterations, sample.load_step = step, sample.residual = relative;
+      sample.step_converged = true;
       progress->update(sample);
     }
     if (reason < 0) {

@@ -15,6 +15,8 @@ struct ProgressSample {
   double target = 0.0;          ///< the tolerance the residual must reach (ADR) or 0
   double time = 0.0;            ///< simulated time (Verlet) or 0
   std::int64_t broken = -1;     ///< bonds broken so far (Verlet with breaking), or -1
+  bool step_converged = false;  ///< Newton: the sample closes a converged load step (whose row follows);
+                                ///< false: from inside a step still being solved
   const History* history = nullptr;  ///< ADR's or Verlet's rows so far, for a report that writes them
 };
 
