@@ -8,7 +8,7 @@
 /// (the prediction 23% below the peak). Ordered last, after every displacement, each
 /// multiplier meets the Schur complement -kappa^2 E K^-1 E^T, whose diagonal is not zero:
 /// the pivots stay on the diagonal and L + U holds what the ordering counted (3.33e7 there,
-/// the peak 938 -> 714 MiB).
+/// the peak 939 -> 715 MiB).
 #include <cstdint>
 #include <vector>
 

@@ -137,8 +137,8 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
   // symmetric, and AMD fills less (plate with a hole, 4,968 dofs: L + U 4.6 M entries
   // against 5.5 M) and factorizes 15-18% faster (plate with a hole, biaxial test 3).
   // (UMFPACK orders by CAMD on A + A^T with the multipliers last: fill_ordering.hpp. KLU's
-  // BTF permutes the multipliers' rows onto nonzero diagonals first, so KLU keeps AMD; its
-  // peak on the plate with a hole was 9.5% above the prediction from that ordering's count.)
+  // BTF permutes the multipliers' rows onto nonzero diagonals first; its fill on the plate
+  // with a hole was within 10% of that ordering's count, so KLU keeps AMD.)
   if (!umfpack) check(SUNLinSol_KLUSetOrdering(ls.get(), 0), "SUNLinSol_KLUSetOrdering");
   const detail::FactorPrediction factors = detail::predict_lu_factors(A);
   if (progress) {
