@@ -12,16 +12,16 @@
 namespace perinom::detail {
 
 struct FactorPrediction {
-  double entries = 0.0;  ///< in L + U: twice AMD's count of L below the diagonal, plus n
-  double largest_column = 0.0;  ///< of L, with its diagonal (AMD_DMAX): the largest front's size
+  double entries = 0.0;  ///< in L + U: twice the ordering's count of L below the diagonal, plus n
+  double largest_column = 0.0;  ///< of L, with its diagonal (CAMD_DMAX): the largest front's size
   double bytes = 0.0;    ///< the peak resident size the solve adds, Jacobian and factors (measured rates)
 };
 
-/// Newton's LU factors: AMD's fill of A + A^T's pattern. UMFPACK's symmetric strategy and KLU
-/// (the AMD ordering newton.cpp asks for) order by the same AMD, so L + U holds about this many
-/// entries when the pivots stay on the diagonal (on the 2-D plate UMFPACK made 10-12% more,
-/// with its off-diagonal pivots; on the 3-D cantilever 30% fewer, AMD's count being an upper
-/// bound).
+/// Newton's LU factors: the fill of order_multipliers_last (fill_ordering.hpp), the ordering
+/// UMFPACK factors in, so L + U holds this many entries while its pivots stay on the diagonal
+/// (the uniaxial plate and the plate with a hole: within 0.1%). KLU orders by its own BTF and
+/// AMD; the same count serves it (its peak on the plate with a hole 9.5% above the prediction).
+/// The count is an upper bound where rows are long (small 3-D Jacobians: +23% on the peak).
 FactorPrediction predict_lu_factors(const CsrMatrix& A);
 
 /// The peak resident size `direct` adds as CHOLMOD factors K_T of `matrix_entries` into a

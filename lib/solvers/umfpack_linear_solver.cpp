@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "fill_ordering.hpp"
+
 namespace perinom::detail {
 namespace {
 
@@ -49,7 +51,14 @@ int setup(SUNLinearSolver s, SUNMatrix A) {
   if (c->numeric) umfpack_dl_free_numeric(&c->numeric);
   if (!same_pattern(c, n, row_ptr, col)) {
     free_factors(c);
-    const int status = umfpack_dl_symbolic(n, n, row_ptr, col, val, &c->symbolic, c->control, c->info);
+    // The ordering the memory check counted (multipliers last: fill_ordering.hpp), with
+    // UMFPACK's symmetric strategy, which keeps it and pivots on the diagonal where it can.
+    // (The Jacobian's pattern is symmetric; left to itself UMFPACK also chose that strategy
+    // and AMD, with the multipliers among the displacements.)
+    const FillOrdering ordering = order_multipliers_last(n, row_ptr, col);
+    const int status = ordering.ok ? umfpack_dl_qsymbolic(n, n, row_ptr, col, val, ordering.order.data(), &c->symbolic,
+                                                          c->control, c->info)
+                                   : UMFPACK_ERROR_out_of_memory;
     if (status != UMFPACK_OK) {
       c->state.out_of_memory = status == UMFPACK_ERROR_out_of_memory;
       c->symbolic = nullptr;
@@ -60,6 +69,7 @@ int setup(SUNLinearSolver s, SUNMatrix A) {
   }
   const int status = umfpack_dl_numeric(row_ptr, col, val, c->symbolic, &c->numeric, c->control, c->info);
   c->state.rcond = status == UMFPACK_OK ? c->info[UMFPACK_RCOND] : 0.0;
+  c->state.lu_entries = status == UMFPACK_OK ? c->info[UMFPACK_LNZ] + c->info[UMFPACK_UNZ] - double(n) : 0.0;
   if (status == UMFPACK_WARNING_singular_matrix) {
     c->state.singular = true;
     umfpack_dl_free_numeric(&c->numeric);  // no solve with a zero pivot
@@ -112,6 +122,7 @@ SUNLinearSolver umfpack_linear_solver(SUNContext context) {
   s->ops->free = free_solver;
   auto* c = new Content;
   umfpack_dl_defaults(c->control);
+  c->control[UMFPACK_STRATEGY] = UMFPACK_STRATEGY_SYMMETRIC;  // with qsymbolic: keep the given ordering
   s->content = c;
   return s;
 }

@@ -15,6 +15,7 @@ struct FactorState {
   bool singular = false;       ///< UMFPACK: a zero pivot (the matrix is singular)
   bool out_of_memory = false;  ///< the symbolic or numeric step ran out of memory
   double rcond = 0.0;          ///< min |U_ii| / max |U_ii| (KLU's klu_rcond measure); 0 before any
+  double lu_entries = 0.0;     ///< UMFPACK: entries of L and U, L's unit diagonal not counted; 0 before any
 };
 
 /// A direct (matrix-based) SUNLinearSolver: setup factors the CSR matrix (the symbolic

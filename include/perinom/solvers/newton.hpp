@@ -36,7 +36,7 @@ struct NewtonOptions {
   int dimension = 0;
   /// "umfpack", "klu": the bytes the whole process may hold once the Jacobian is factored (the
   /// command line's --max-memory); 0: the factors alone must fit in the memory available.
-  /// Checked before the first factorization against AMD's fill (factor_memory.hpp): a solve
+  /// Checked before the first factorization against the ordering's fill (factor_memory.hpp): a solve
   /// that would not fit throws InputError naming solver.linear_solver.
   double memory_limit = 0.0;
   /// Runs as each load step begins (the plastic path's ModelHistory::begin_step).
