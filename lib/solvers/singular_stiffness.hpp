@@ -7,7 +7,7 @@
 namespace perinom::detail {
 
 /// Called when a Newton step's factorization finds the stiffness singular (`factor` says how:
-/// "KLU reciprocal pivot ratio 1.2e-17"). An elastic body's stiffness does not change with the
+/// "condition number 3.1e+17, estimated from KLU's factors"). An elastic body's stiffness does not change with the
 /// load, so a missing support is the cause: throws InputError (exit 2). A plastic body's
 /// tangent loses stiffness as it yields: past its limit load a mechanism flows, and the step
 /// has no balanced state. Returns that failure's text for the solver's report (exit 3, the

@@ -5,7 +5,10 @@
 #include <umfpack.h>
 
 #include <algorithm>
+#include <limits>
 #include <vector>
+
+#include "condition_estimate.hpp"
 
 #include "fill_ordering.hpp"
 
@@ -128,5 +131,23 @@ SUNLinearSolver umfpack_linear_solver(SUNContext context) {
 }
 
 FactorState umfpack_factor_state(SUNLinearSolver solver) { return content(solver)->state; }
+
+double umfpack_condition_number(SUNLinearSolver solver, SUNMatrix A) {
+  Content* c = content(solver);
+  if (!c->numeric) return std::numeric_limits<double>::infinity();
+  const sunindextype n = SM_ROWS_S(A);
+  const sunindextype* row_ptr = SM_INDEXPTRS_S(A);
+  const sunindextype* col = SM_INDEXVALS_S(A);
+  const double* val = SM_DATA_S(A);
+  std::vector<double> b;
+  const auto with = [&](int system) {
+    return [&, system](std::vector<double>& x) {
+      b = x;
+      umfpack_dl_solve(system, row_ptr, col, val, x.data(), b.data(), c->numeric, c->control, c->info);
+    };
+  };
+  // The factors are A^T's (setup): UMFPACK_At solves A x = b, UMFPACK_A solves A^T x = b.
+  return csr_norm1(n, row_ptr, col, val) * inverse_norm1_estimate(static_cast<std::size_t>(n), with(UMFPACK_At), with(UMFPACK_A));
+}
 
 }  // namespace perinom::detail

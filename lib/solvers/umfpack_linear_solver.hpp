@@ -7,6 +7,7 @@
 /// KLU (docs/performance.md).
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
 
 namespace perinom::detail {
 
@@ -25,5 +26,9 @@ SUNLinearSolver umfpack_linear_solver(SUNContext context);
 
 /// The state of the last factorization of a solver made by umfpack_linear_solver.
 FactorState umfpack_factor_state(SUNLinearSolver solver);
+
+/// The 1-norm condition number of the last matrix A factored, estimated from solves with its
+/// factors (condition_estimate.hpp); infinite when it had a zero pivot.
+double umfpack_condition_number(SUNLinearSolver solver, SUNMatrix A);
 
 }  // namespace perinom::detail
