@@ -10,6 +10,7 @@ namespace perinom::cli {
 
 NewtonOptions rank_newton_options(const SolverSpec& solver, const RankRun& run) {
   NewtonOptions o = newton_options(solver);
+  o.memory_limit = run.local.memory_limit;  // --max-memory, a bound for each rank
   const int d = run.local.cloud.dim;
   if (o.linear_solver == "gamg" && run.model.dofs_per_particle() == d) {  // a solid (a plate's w: constants)
     o.dimension = d;

@@ -140,6 +140,7 @@ int run_distributed(const Options& opt) {
   const LocalPart part = local_part(frame.cloud, morton_order(frame.cloud), world.size, world.rank, horizon);
   Problem local;
   local.scene = scene;
+  local.memory_limit = opt.max_memory;  // a bound for each rank (rank_newton_options)
   local.cloud = subcloud(frame.cloud, part.particles);
   local.probes = frame.probes;  // their specs (the readout asks whether one reconstructs)
   std::optional<PlateCloud> local_plate;  // a thin plate's part: its nodes, then their mirrors

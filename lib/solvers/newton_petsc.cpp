@@ -5,14 +5,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <exception>
+#include <functional>
 #include <memory>
+#include <utility>
 
 #include <Eigen/Dense>
 
 #include "galerkin.hpp"
+#include "mumps_memory.hpp"
 #include "petsc_reduced.hpp"
 #include "perinom/core/error.hpp"
+#include "perinom/core/memory.hpp"
 #include "perinom/solvers/newton.hpp"
 #include "petsc_partition.hpp"
 #include "petsc_plugin.hpp"
@@ -62,9 +67,17 @@ struct Events {
   }
 };
 
+/// The Jacobian callback's context: the system, and what runs once on the first Jacobian
+/// before anything factors it (empty: nothing).
+struct JacobianContext {
+  Reduced* sys;
+  std::function<void(Mat)> first;
+};
+
 PetscErrorCode jacobian_callback(SNES, Vec x, Mat J, Mat, void* ctx) {
   static const Events events;
-  auto* sys = static_cast<Reduced*>(ctx);
+  auto* context = static_cast<JacobianContext*>(ctx);
+  Reduced* sys = context->sys;
   const PetscScalar* xa = nullptr;
   PetscErrorCode e = VecGetArrayRead(x, &xa);
   if (e) return e;
@@ -106,6 +119,14 @@ PetscErrorCode jacobian_callback(SNES, Vec x, Mat J, Mat, void* ctx) {
   if (!e) e = MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY);
   if (!e) e = MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY);
   PetscLogEventEnd(events.copy, 0, 0, 0, 0);
+  if (!e && context->first) {
+    try {
+      std::exchange(context->first, nullptr)(J);
+    } catch (...) {
+      sys->error = std::current_exception();
+      return PETSC_ERR_USER;
+    }
+  }
   return e;
 }
 
@@ -261,7 +282,26 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
   check(MatSetType(J.p, MATAIJ), "MatSetType");
   check(SNESCreate(PETSC_COMM_WORLD, &snes.p), "SNESCreate");
   check(SNESSetFunction(snes.p, r.p, residual_callback, &sys), "SNESSetFunction");
-  check(SNESSetJacobian(snes.p, J.p, J.p, jacobian_callback, &sys), "SNESSetJacobian");
+  JacobianContext jacobian{&sys, nullptr};
+  if (opt.linear_solver == "mumps")
+    // MUMPS's own analysis of the first Jacobian says its factors' size before they are made
+    // (mumps_memory.hpp): one more analysis per solve, no more assembly.
+    jacobian.first = [&](Mat first) {
+      const MumpsPrediction factors = predict_mumps_factors(first, !model.history());
+      if (progress) {
+        char what[240];
+        std::snprintf(what, sizeof what,
+                      "Newton: MUMPS's factors, by its analysis (%.1f s): %.0f MiB on the largest process, %.0f MiB on all, "
+                      "beside the %.0f MiB this process holds",
+                      factors.seconds, factors.largest_bytes / 1048576.0, factors.total_bytes / 1048576.0,
+                      resident_bytes() / 1048576.0);
+        progress->phase(what);
+      }
+      PetscInt unknowns = 0;
+      check(MatGetSize(first, &unknowns, nullptr), "MatGetSize");
+      require_mumps_memory(factors, unknowns, opt.memory_limit);
+    };
+  check(SNESSetJacobian(snes.p, J.p, J.p, jacobian_callback, &jacobian), "SNESSetJacobian");
   configure(snes.p, J.p, sys, opt);
   {
     // The first guess: u's free entries (T is the identity on them).

@@ -89,3 +89,27 @@ solver: {type: newton}
                             {"solver.linear_solver: ", "LU factors of the Jacobian", "allowed by --max-memory",
                              "linear_solver gamg"});
 }
+
+TEST_CASE("MUMPS's factors are sized by its analysis and refused past --max-memory", "[cli][petsc]") {
+  // MUMPS orders by its own choice, so its analysis says its size (lib/solvers/mumps_memory.hpp).
+  // The limit is set from the run's own figures: half the factors' estimate beside what the
+  // process holds is refused (after the estimate before building passed: 126 MiB against
+  // 118 + 35 / 2), twice it passes.
+  ScratchDir dir;
+  const std::string scene = std::string("run ") + PERINOM_SOURCE_DIR +
+                            "/examples/uniaxial_compression.yaml --set solver.type=newton --set solver.linear_solver=mumps ";
+  const Outcome ok = perinom(dir, scene + "--out ok");
+  INFO(ok.out << ok.err);
+  if (ok.err.find("built without PETSc") != std::string::npos) return;  // (refused by name: test_petsc_run.cpp)
+  REQUIRE(ok.exit_code == 0);
+  std::smatch m;
+  REQUIRE(std::regex_search(ok.out, m, std::regex("perinom: Newton: MUMPS's factors, by its analysis \\([0-9.]+ s\\): ([0-9]+) "
+                                                  "MiB on the largest process, [0-9]+ MiB on all, beside the ([0-9]+) MiB")));
+  const double factors = std::stod(m[1]), held = std::stod(m[2]);
+  CHECK(factors > 10.0);
+  const auto limit = [&](double times) { return " --max-memory " + std::to_string(int(held + times * factors)) + "M"; };
+  require_one_clear_error(perinom(dir, scene + "--out small" + limit(0.5)),
+                          {"solver.linear_solver: MUMPS's factors of the Jacobian (", "INFOG(16)",
+                           "that --max-memory leaves a process", "linear_solver gamg"});
+  CHECK(perinom(dir, scene + "--out enough" + limit(2.0)).exit_code == 0);
+}
