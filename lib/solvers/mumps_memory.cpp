@@ -28,23 +28,28 @@ int ranks_on_host() {
 
 }  // namespace
 
-MumpsPrediction predict_mumps_factors(Mat J, bool symmetric) {
+MumpsPrediction analyse_mumps_factors(PC pc, Mat J, bool symmetric) {
+  MumpsPrediction p;
+  PetscBool factor = PETSC_FALSE;
+  check(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), symmetric ? PCCHOLESKY : PCLU, &factor),
+        "PetscObjectTypeCompare");
+  MatSolverType solver = nullptr;
+  if (!factor || PCFactorGetMatSolverType(pc, &solver) || !solver || std::string(solver) != MATSOLVERMUMPS) return p;
   const double start = MPI_Wtime();
+  check(PCSetOperators(pc, J, J), "PCSetOperators");
+  check(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
   Mat F = nullptr;
-  check(MatGetFactor(J, MATSOLVERMUMPS, symmetric ? MAT_FACTOR_CHOLESKY : MAT_FACTOR_LU, &F), "MatGetFactor");
+  check(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix");
   MatFactorInfo info;
   check(MatFactorInfoInitialize(&info), "MatFactorInfoInitialize");
-  // The orderings are MUMPS's own (ICNTL(7)), so none is passed.
-  const PetscErrorCode analysed =
-      symmetric ? MatCholeskyFactorSymbolic(F, J, nullptr, &info) : MatLUFactorSymbolic(F, J, nullptr, nullptr, &info);
-  PetscInt largest = 0, total = 0;
-  if (!analysed) {
-    MatMumpsGetInfog(F, 16, &largest);
-    MatMumpsGetInfog(F, 17, &total);
-  }
-  MatDestroy(&F);
-  check(analysed, "MUMPS's analysis of the Jacobian");
-  MumpsPrediction p;
+  // No ordering is passed: MUMPS orders by its own choice (ICNTL(7)), as in the set-up.
+  check(symmetric ? MatCholeskyFactorSymbolic(F, J, nullptr, &info) : MatLUFactorSymbolic(F, J, nullptr, nullptr, &info),
+        "MUMPS's analysis of the Jacobian");
+  PetscInt status = 0, largest = 0, total = 0;
+  check(MatMumpsGetInfog(F, 1, &status), "MatMumpsGetInfog");
+  if (status < 0) return p;  // (the set-up meets the same error and reports it)
+  check(MatMumpsGetInfog(F, 16, &largest), "MatMumpsGetInfog");
+  check(MatMumpsGetInfog(F, 17, &total), "MatMumpsGetInfog");
   p.largest_bytes = 1e6 * double(largest);
   p.total_bytes = 1e6 * double(total);
   p.seconds = MPI_Wtime() - start;

@@ -6,7 +6,7 @@
 /// its data for an in-core factorization on each process, by which it sizes its work space.
 /// Without this check a MUMPS factorization too large for the machine would meet the kernel's
 /// OOM killer, with no message and no output (as UMFPACK's did before its check).
-#include <petscmat.h>
+#include <petscpc.h>
 
 namespace perinom::detail {
 
@@ -17,9 +17,12 @@ struct MumpsPrediction {
   double seconds = 0.0;        ///< the analysis's wall time
 };
 
-/// Runs MUMPS's analysis of J (assembled; LDL^T when `symmetric`, else LU) with the options
-/// the solve's factorization reads (-mat_mumps_icntl_*), and frees it.
-MumpsPrediction predict_mumps_factors(Mat J, bool symmetric);
+/// Runs the analysis (ordering and symbolic factorization) of J by the MUMPS factor of `pc`,
+/// the preconditioner of Newton's linear solve (PCCHOLESKY when `symmetric`, else PCLU, with
+/// MUMPS), as its set-up would, and reads what it predicts. The set-up then finds it done
+/// (PETSc's MUMPS interface analyses a factor once), so nothing is repeated. Returns nothing
+/// predicted (zeros) when the options made `pc` something else.
+MumpsPrediction analyse_mumps_factors(PC pc, Mat J, bool symmetric);
 
 /// Throws InputError (exit 2) on every rank when a process's estimate, beside what the
 /// process holds, exceeds the room of the most crowded rank: --max-memory (`limit`, a bound for

@@ -285,9 +285,14 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
   JacobianContext jacobian{&sys, nullptr};
   if (opt.linear_solver == "mumps")
     // MUMPS's own analysis of the first Jacobian says its factors' size before they are made
-    // (mumps_memory.hpp): one more analysis per solve, no more assembly.
+    // (mumps_memory.hpp); the factorization then uses that analysis.
     jacobian.first = [&](Mat first) {
-      const MumpsPrediction factors = predict_mumps_factors(first, !model.history());
+      KSP ksp = nullptr;
+      PC pc = nullptr;
+      check(SNESGetKSP(snes.p, &ksp), "SNESGetKSP");
+      check(KSPGetPC(ksp, &pc), "KSPGetPC");
+      const MumpsPrediction factors = analyse_mumps_factors(pc, first, !model.history());
+      if (factors.largest_bytes <= 0.0) return;  // (a preconditioner of the user's own)
       if (progress) {
         char what[240];
         std::snprintf(what, sizeof what,
