@@ -21,6 +21,12 @@ bool ends_with(const std::string& s, const std::string& end) {
   return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
 }
 
+/// The output names a run may write whatever its scene.
+bool always_written(const std::string& file_name) {
+  return file_name == "summary.json" || file_name == "history.csv" || file_name == "load_steps.csv" ||
+         file_name == "checkpoint.bin";
+}
+
 /// The names an earlier run's manifest lists (none without one).
 std::set<std::string> read_manifest(const std::string& dir) {
   std::set<std::string> names;
@@ -73,7 +79,7 @@ bool running_perinom(long pid) {
 bool is_run_output(const std::string& file_name) {
   std::string name = file_name;
   if (ends_with(name, ".tmp")) name.resize(name.size() - 4);
-  if (name == "summary.json" || name == "history.csv" || name == "load_steps.csv" || name == "checkpoint.bin") return true;
+  if (always_written(name)) return true;
   if (ends_with(name, ".vtu") || ends_with(name, ".pvtu") || ends_with(name, ".pvd")) return true;
   if (!ends_with(name, ".csv")) return false;
   if (name.rfind("probe_", 0) == 0) return true;
@@ -84,7 +90,15 @@ bool is_run_output(const std::string& file_name) {
          stem.find_first_not_of("0123456789", underscore + 1) == std::string::npos;
 }
 
-RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& spare) : dir_(std::move(dir)) {
+bool scene_writes(const Scene& scene, const std::string& file_name) {
+  if (file_name == scene.name + ".pvd" || file_name.rfind(scene.name + "_", 0) == 0) return true;
+  for (const ProbeSpec& probe : scene.probes)
+    if (file_name == "probe_" + probe.name + ".csv" || file_name == "probe_" + probe.name + "_history.csv") return true;
+  return false;
+}
+
+RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& spare, const OutputNames& writes)
+    : dir_(std::move(dir)) {
   std::error_code ec;
   fs::create_directories(dir_, ec);
   const std::string path = dir_ + "/" + marker;
@@ -101,6 +115,28 @@ RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& sp
                      ") is writing this folder: give this run another --out, or wait for that one to end (if no "
                      "perinom runs, remove " + path + ")");
   const fs::file_time_type killed_at = marked ? fs::last_write_time(path, none) : fs::file_time_type::max();
+  // Whether a file named like an output is an earlier run's: its manifest lists it, or a
+  // killed run's marker is older than it.
+  const auto earlier_run_wrote = [&](const fs::directory_entry& entry, const std::string& name) {
+    std::error_code e;
+    return earlier.count(name) || (marked && !none && entry.last_write_time(e) >= killed_at && !e);
+  };
+  // Before anything is written: a file of the user's that this run would write over is refused.
+  std::vector<std::string> claimed;
+  for (const auto& entry : fs::directory_iterator(dir_, ec)) {
+    const std::string name = entry.path().filename().string();
+    std::error_code e;
+    if (!entry.is_regular_file(e) || !is_run_output(name) || ends_with(name, ".tmp") || spare.count(name)) continue;
+    if (!earlier_run_wrote(entry, name) && (always_written(name) || (writes && writes(name)))) claimed.push_back(name);
+  }
+  if (!claimed.empty()) {
+    std::sort(claimed.begin(), claimed.end());
+    std::string list;
+    for (const std::string& n : claimed) list += (list.empty() ? "" : ", ") + n;
+    throw InputError("--out " + dir_ + " holds " + list + ", which no perinom run recorded writing there, and this "
+                     "run would write over " + (claimed.size() > 1 ? "them" : "it") +
+                     ": move them, or give this run another --out");
+  }
   {
     std::ofstream f(path, std::ios::trunc);
     f << "perinom run in progress (process " << ::getpid()
@@ -118,8 +154,7 @@ RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& sp
       carried_.insert(name);
       continue;
     }
-    const bool written = earlier.count(name) || (marked && !none && entry.last_write_time(e) >= killed_at && !e);
-    if (!written) foreign_.push_back(name);
+    if (!earlier_run_wrote(entry, name)) foreign_.push_back(name);
     else if (keep) carried_.insert(name);
     else if (fs::remove(entry.path(), e)) ++removed_;
   }

@@ -11,16 +11,22 @@
 //     since its marker. Any *.tmp of these goes too. A run resumed in place (restart.hpp)
 //     spares the files of the run it continues. Files named like a run's output that no run
 //     recorded (a reference.vtu of the user's, a folder of an older perinom) are left in
-//     place and listed (foreign()).
+//     place and listed (foreign()), unless this run would write over them: a foreign
+//     summary.json, history.csv, load_steps.csv or checkpoint.bin, or a name the run says it
+//     writes (its snapshots, its probes), is refused before anything is written (a user's
+//     summary.json was overwritten while the warning said it was left in place).
 //   - summary.json is written last, with its "status".
 //   - On every way out the program controls (the destructor runs on success, on exit codes
 //     1 to 4 alike) the manifest is written (this run's outputs: written since its marker,
 //     the spared files, and with --keep the earlier manifest's), and the marker and any
 //     .tmp file are removed; only a kill leaves them.
 #include <filesystem>
+#include <functional>
 #include <set>
 #include <string>
 #include <vector>
+
+#include "perinom/scene/scene.hpp"
 
 namespace perinom::cli {
 
@@ -30,9 +36,13 @@ class RunFolder {
   static constexpr const char* marker = "run.incomplete";
   static constexpr const char* manifest = "perinom.files";
 
+  /// Whether this run writes a file of that name (beyond the names every run may write).
+  using OutputNames = std::function<bool(const std::string&)>;
+
   /// Prepares `dir` as above, sparing the files named in `spare`. @throws InputError naming
-  /// --out DIR if it cannot be written or another perinom run is writing it.
-  RunFolder(std::string dir, bool keep, const std::set<std::string>& spare = {});
+  /// --out DIR if it cannot be written, another perinom run is writing it, or it holds a file
+  /// of the user's this run would write over.
+  RunFolder(std::string dir, bool keep, const std::set<std::string>& spare = {}, const OutputNames& writes = {});
   ~RunFolder();
   RunFolder(const RunFolder&) = delete;
   RunFolder& operator=(const RunFolder&) = delete;
@@ -55,5 +65,9 @@ class RunFolder {
 
 /// Whether a file name in an output folder is one `perinom run` writes (or its .tmp).
 bool is_run_output(const std::string& file_name);
+
+/// Whether a run of `scene` writes a file of that name: its snapshots (NAME_NNNNNN.vtu, .csv,
+/// .pvtu), its series NAME.pvd and its probes' files.
+bool scene_writes(const Scene& scene, const std::string& file_name);
 
 }  // namespace perinom::cli

@@ -129,7 +129,8 @@ int run(const Options& opt) {
       opt.restart.empty() ? std::nullopt : std::optional<Restart>(std::in_place, opt.restart, scene);
   const std::string dir = !opt.out.empty() ? opt.out : restart ? opt.restart : "out/" + scene.name;
   const bool in_place = restart && restart->in_place(dir);
-  const RunFolder folder(dir, opt.keep, in_place ? restart->files() : std::set<std::string>{});
+  const RunFolder folder(dir, opt.keep, in_place ? restart->files() : std::set<std::string>{},
+                         [&scene](const std::string& name) { return scene_writes(scene, name); });
   folder.announce();
   if (restart) restart->bring_snapshots(dir);
   std::printf("perinom: %s: building particles, families and operators\n", scene.name.c_str());

@@ -116,7 +116,8 @@ int run_distributed(const Options& opt) {
   const std::string dir = !opt.out.empty() ? opt.out : "out/" + scene.name;
   std::optional<RunFolder> folder;
   if (root) {
-    folder.emplace(dir, opt.keep);
+    folder.emplace(dir, opt.keep, std::set<std::string>{},
+                   [&scene](const std::string& name) { return scene_writes(scene, name); });
     folder->announce();
   }
   barrier();

@@ -63,6 +63,16 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
   const double* fext = loading.force.empty() ? nullptr : loading.force.data();
   // u_old, v_old: the state of the previous step, the last one that passed the guard.
   std::vector<double> a(n), fint(n), u_old(u), v_old(v);
+  // With the energy guard: the last state whose balance was checked (a history row's). A run
+  // stopped by the guard ends there, not on the step before the failure, whose energy nobody
+  // checked (a run stopped at step 20 wrote "the last good state, step 19" with 1e30 m).
+  std::vector<double> u_checked, v_checked;
+  std::int64_t checked_step = 0;
+  double checked_time = 0.0;
+  auto checked = [&](std::int64_t step, double t) {
+    if (!opt.energy_check) return;
+    u_checked = u, v_checked = v, checked_step = step, checked_time = t;
+  };
   std::vector<double> fint_fixed(loading.fixed.size());  // f_int at the constrained dofs, before the step
   rep.history.columns = {"step", "time", "kinetic_energy", "strain_energy", "external_work",
                          "total_energy"};
@@ -133,6 +143,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     const double defect = std::abs(kin + strain + released - e0 - all_work);
     const double bound = opt.energy_tolerance * std::max(e_max, w_max) + opt.energy_floor;
     if (opt.energy_check && defect > bound) {
+      rep.history.values.insert(rep.history.values.end(), row.begin(), row.end());  // the evidence, in history.csv
       char what[640];
       std::snprintf(what, sizeof what,
                     "Verlet: the energy balance failed at step %lld (t = %.4e s): kinetic + strain energy "
@@ -165,12 +176,14 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     rep.history.values.assign(resume->history.begin(), resume->history.end());
     rep.iterations = resume->step, rep.end_time = t;
     first_step = resume->step + 1;
+    checked(resume->step, t);
   } else {
     loading.impose(factor(t), u.data(), tau(t));
     accelerate(0, t);
     if (moving_galerkin) loading.multipliers(fint.data(), factor(t), lambda_old.data());
     energies(0, t);
     record();
+    checked(0, t);
   }
   ProgressSample sample;
   sample.limit = opt.steps;
@@ -239,12 +252,19 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
       const bool keep_row = step % opt.history_every == 0;
       if (keep_row) energies(step, t);
       observe(step, t, u);  // part 3: the snapshot writer refuses a non-finite field
-      if (keep_row) record();
+      if (keep_row) record(), checked(step, t);
     } catch (const SolveError& e) {
-      u.swap(u_old), v.swap(v_old);
-      rep.end_time = t_old;  // rep.iterations is still step - 1
       const auto* d = dynamic_cast<const DivergenceError*>(&e);
-      throw DivergenceError(std::string(e.what()) + "; the last good state is step " + std::to_string(step - 1),
+      if (!opt.energy_check) {
+        u.swap(u_old), v.swap(v_old);
+        rep.end_time = t_old;  // rep.iterations is still step - 1
+        throw DivergenceError(std::string(e.what()) + "; the last good state is step " + std::to_string(step - 1),
+                              d ? d->step : step);
+      }
+      u.swap(u_checked), v.swap(v_checked);
+      rep.end_time = checked_time, rep.iterations = checked_step;
+      throw DivergenceError(std::string(e.what()) + "; the last good state is step " + std::to_string(checked_step) +
+                                ", the last whose energy balance was checked (every solver.history_every steps)",
                             d ? d->step : step);
     }
     rep.iterations = step;

@@ -135,6 +135,26 @@ TEST_CASE("a run removes only what a perinom run wrote: a user's files named lik
   }
 }
 
+TEST_CASE("a run refuses to write over a user's file it would replace, before it writes anything", "[cli]") {
+  // A user's summary.json and history.csv were overwritten while the warning said they were
+  // "left in place, and not this run's".
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  const fs::path out = dir.path / "out";
+  fs::create_directories(out);
+  for (const std::string name : {"summary.json", "tiny_000000.vtu"}) {
+    INFO(name);
+    std::ofstream(out / name) << "mine";
+    const Outcome o = perinom(dir, "run scene.yaml --out out");
+    CHECK(o.exit_code == 2);
+    CHECK(o.err.find("--out out holds " + name + ", which no perinom run recorded writing there, and this run "
+                     "would write over it") != std::string::npos);
+    CHECK(slurp(out / name) == "mine");
+    CHECK(files_in(out) == std::vector<std::string>{name});  // no marker, no output
+    fs::remove(out / name);
+  }
+}
+
 TEST_CASE("after a killed run the files written since its marker are removed, older ones stay", "[cli]") {
   ScratchDir dir;
   std::ofstream(dir.path / "scene.yaml") << tiny_scene;

@@ -62,6 +62,37 @@ TEST_CASE("Verlet past its stable step stops at the guard and returns the step b
   CHECK(rep.history.at(rep.history.rows() - 1, 0) == rep.iterations);
 }
 
+TEST_CASE("Verlet stopped by its energy balance returns the last state whose balance was checked", "[solvers]") {
+  // The step before the failure was never checked (the balance is taken at history rows):
+  // a run stopped at step 20 wrote "the last good state, step 19" with displacements of 1e30 m.
+  Problem p = build_problem(parse_scene(plate, "plate.yaml"));
+  VerletOptions opt;
+  opt.dt = 1.2 * stable_time_step(p.physics());
+  opt.steps = 100000;
+  opt.history_every = 5;
+  std::vector<double> u, v;
+  std::vector<std::vector<double>> observed;
+  Observer every{1, [&](std::int64_t, double, const std::vector<double>& state) { observed.push_back(state); }};
+  const SolveReport rep = solve_verlet(p.physics(), p.loading, opt, u, v, nullptr, every);
+  INFO(rep.failure);
+  REQUIRE(rep.diverged);
+  CHECK(rep.failure.find("energy balance failed at step " + std::to_string(rep.diverged_at)) != std::string::npos);
+  CHECK(rep.failure.find("the last good state is step " + std::to_string(rep.iterations) +
+                         ", the last whose energy balance was checked") != std::string::npos);
+  REQUIRE(rep.diverged_at % 5 == 0);
+  REQUIRE(rep.diverged_at > 10);
+  CHECK(rep.iterations == rep.diverged_at - 5);
+  CHECK(rep.end_time == Approx(rep.iterations * opt.dt).epsilon(1e-12));
+  REQUIRE(observed.size() > static_cast<std::size_t>(rep.iterations));
+  CHECK(u == observed[rep.iterations - 1]);  // observed[k] is step k + 1
+  // The failing row is kept as the evidence: its balance is the one the guard refused.
+  const std::size_t last = rep.history.rows() - 1;
+  CHECK(rep.history.at(last, 0) == rep.diverged_at);
+  const double e = rep.history.at(last, 2) + rep.history.at(last, 3), w = rep.history.at(last, 4);
+  CHECK(std::abs(rep.history.at(last, 5)) > opt.energy_tolerance * std::max(e, std::abs(w)));
+  require_finite(rep.history.values);
+}
+
 TEST_CASE("an observer that refuses a state is a failed guard: the state before is returned", "[solvers]") {
   Problem p = build_problem(parse_scene(plate, "plate.yaml"));
   std::vector<double> at_5;
