@@ -51,10 +51,10 @@ Families radius_families(const PointCloud& cloud, double delta) {
   // Buckets of side `cell` >= delta, so the neighbours of a particle lie in the 3^d
   // buckets around it. A horizon tiny against the cloud (delta = 1e-300) would ask for more
   // buckets than a long counts: then they grow until there are about as many as particles.
-  double cell = delta, buckets = 1.0;
+  double cell = delta * (1.0 + kHorizonTie), buckets = 1.0;
   for (int a = 0; a < d; ++a) buckets *= (hi[a] - lo[a]) / cell + 1.0;
   const double most = 8.0 * static_cast<double>(n) + 64.0;
-  if (!(buckets <= most)) cell = std::max(delta, std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) /
+  if (!(buckets <= most)) cell = std::max(cell, std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) /
                                                      std::pow(most, 1.0 / d));
   std::array<long, 3> cells{1, 1, 1};
   for (int a = 0; a < d; ++a)
@@ -80,7 +80,11 @@ Families radius_families(const PointCloud& cloud, double delta) {
     for (std::size_t i = 0; i < n; ++i) sorted[next[cell_id[i]]++] = static_cast<ParticleId>(i);
   }
   std::vector<std::vector<ParticleId>> rows(n);
-  const double r2 = delta * delta;
+  // Ties within rounding belong to the family: on a lattice with a whole-number horizon ratio
+  // (3.0) the neighbours at exactly delta were kept or dropped by the rounding of their
+  // coordinates, so a symmetric plate answered asymmetrically (3.7% between mirrored
+  // particles) and the answer changed with the unit of length (1.4% from m to mm).
+  const double r2 = delta * delta * (1.0 + kHorizonTie);
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::size_t i = 0; i < n; ++i) {
     const double* p = cloud.point(i);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "../support/clouds.hpp"
+#include "perinom/geometry/lattice.hpp"
 #include "perinom/neighbors/search.hpp"
 
 using namespace perinom;
@@ -54,6 +55,32 @@ TEST_CASE("radius search equals brute force on a lattice at horizon ratio 3.015"
   std::size_t most = 0;
   for (std::size_t i = 0; i < c.size(); ++i) most = std::max<std::size_t>(most, fast.end(i) - fast.begin(i));
   CHECK(most == 122);
+}
+
+TEST_CASE("a whole-number horizon ratio keeps the lattice neighbours at exactly delta, in any unit of length",
+          "[neighbors]") {
+  // At ratio 3.0 the neighbours at exactly 3 dx were kept or dropped by the rounding of their
+  // coordinates: a symmetric plate with a hole answered 3.7% apart at mirrored particles, and
+  // the same plate in mm differed by 1.4% from the one in m.
+  for (const double unit : {1.0, 1000.0, 1e-3}) {
+    INFO("unit " << unit);
+    BoxGeometry box;
+    box.dim = 2;
+    box.min = {0.1 * unit, 0.03 * unit, 0.0};
+    box.max = {0.2 * unit, 0.13 * unit, 0.0};
+    const double dx = 0.0025 * unit;
+    const PointCloud c = make_lattice(box, dx);
+    const Families f = radius_families(c, 3.0 * dx);
+    std::size_t interior = 0;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const double x = c.x[2 * i], y = c.x[2 * i + 1];
+      if (x < box.min[0] + 3 * dx || x > box.max[0] - 3 * dx || y < box.min[1] + 3 * dx || y > box.max[1] - 3 * dx)
+        continue;
+      ++interior;
+      REQUIRE(f.end(i) - f.begin(i) == 28);  // the lattice points of the disc of radius 3 but the centre
+    }
+    CHECK(interior == 34 * 34);
+  }
 }
 
 TEST_CASE("k-nearest search equals brute force", "[neighbors]") {

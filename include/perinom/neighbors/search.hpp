@@ -5,7 +5,13 @@
 
 namespace perinom {
 
-/// Families of all j != i with |x_j - x_i| <= delta (a uniform cell list of cell size delta).
+/// The relative slack on delta^2 within which a neighbour counts as at the horizon (a
+/// lattice neighbour at exactly 3 dx with horizon ratio 3.0 is in the family whatever the
+/// rounding of its coordinates).
+inline constexpr double kHorizonTie = 1e-9;
+
+/// Families of all j != i with |x_j - x_i|^2 <= delta^2 (1 + kHorizonTie) (a uniform cell
+/// list of cell size delta (1 + kHorizonTie)).
 Families radius_families(const PointCloud& cloud, double delta);
 
 /// Families of the k nearest neighbours of each particle (nanoflann k-d tree).
