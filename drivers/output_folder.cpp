@@ -134,8 +134,8 @@ RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& sp
     std::string list;
     for (const std::string& n : claimed) list += (list.empty() ? "" : ", ") + n;
     throw InputError("--out " + dir_ + " holds " + list + ", which no perinom run recorded writing there, and this "
-                     "run would write over " + (claimed.size() > 1 ? "them" : "it") +
-                     ": move them, or give this run another --out");
+                     "run would write over " + (claimed.size() > 1 ? "them: move them" : "it: move it") +
+                     ", or give this run another --out");
   }
   {
     std::ofstream f(path, std::ios::trunc);

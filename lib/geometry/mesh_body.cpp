@@ -85,6 +85,8 @@ class Builder {
   Vec point(std::size_t node) const { return {{m_.x[3 * node], m_.x[3 * node + 1], m_.x[3 * node + 2]}}; }
 
   Body build() {
+    // First: a 3-D mesh in a 2-D scene otherwise met "element 1 ... has zero area".
+    if (dim_ == 2) check_planar();
     for (std::size_t e = 0; e < m_.elements(); ++e)
       if (gmsh_element_shape(m_.type[e]).first == dim_) add_element(e);
     if (body_.cloud.size() == 0)
@@ -93,7 +95,6 @@ class Builder {
                                   : "tetrahedron, hexahedron, prism or pyramid (a 3-D scene's particles are its volume elements)") +
                        "; did the .geo define a Physical " + (dim_ == 2 ? "Surface" : "Volume") +
                        "? gmsh then saves only the grouped elements");
-    if (dim_ == 2) check_planar();
     const auto groups = face_groups(m_, dim_, boundary_groups_);
     for (const auto& f : faces_) {
       if (f.second.size() > 2)

@@ -274,9 +274,9 @@ void read_solver(Fields f, Scene& s) {
   if (!s.stages.empty() && f.has("load_steps")) f.fail("load_steps", "with stages, each stage sets its steps");
   const bool newton = v.type == "newton";
   v.tolerance = f.number("tolerance", v.tolerance);
-  if (!(v.tolerance > 0.0)) f.fail("tolerance", "must be positive");
+  if (!(v.tolerance > 0.0 && v.tolerance < 1.0)) f.fail("tolerance", "must lie in (0, 1): it is relative");
   v.displacement_tolerance = f.number("displacement_tolerance", v.displacement_tolerance);
-  if (!(v.displacement_tolerance > 0.0)) f.fail("displacement_tolerance", "must be positive");
+  if (!(v.displacement_tolerance > 0.0 && v.displacement_tolerance < 1.0)) f.fail("displacement_tolerance", "must lie in (0, 1): it is relative");
   v.max_iterations = f.integer("max_iterations", v.max_iterations);
   if (v.max_iterations < 1) f.fail("max_iterations", "must be at least 1");
   v.load_steps = f.small_integer("load_steps", v.load_steps);
@@ -293,7 +293,7 @@ void read_solver(Fields f, Scene& s) {
   if (v.history_every < 1) f.fail("history_every", "must be at least 1");
   v.line_search = f.boolean("line_search", v.line_search);
   v.step_tolerance = f.number("step_tolerance", v.step_tolerance);
-  if (!(v.step_tolerance > 0.0)) f.fail("step_tolerance", "must be positive");
+  if (!(v.step_tolerance > 0.0 && v.step_tolerance < 1.0)) f.fail("step_tolerance", "must lie in (0, 1): it is relative");
   v.linear_solver = f.text("linear_solver", v.linear_solver);
   if (v.linear_solver != "klu" && v.linear_solver != "umfpack" && v.linear_solver != "mumps" &&
       v.linear_solver != "gamg")
@@ -311,7 +311,7 @@ void read_solver(Fields f, Scene& s) {
     f.fail("linear_solver", v.linear_solver + " solves the Galerkin-reduced system; the " + s.model.formulation +
                                 " formulation collocates its constraints: use umfpack or klu");
   v.yield_tolerance = f.number("yield_tolerance", v.yield_tolerance);
-  if (!(v.yield_tolerance > 0.0)) f.fail("yield_tolerance", "must be positive");
+  if (!(v.yield_tolerance > 0.0 && v.yield_tolerance < 1.0)) f.fail("yield_tolerance", "must lie in (0, 1): it is relative");
   v.max_rounds = f.small_integer("max_rounds", v.max_rounds);
   if (v.max_rounds < 1) f.fail("max_rounds", "must be at least 1");
   if (newton && v.max_iterations > 1000000000) f.fail("max_iterations", "is out of range");

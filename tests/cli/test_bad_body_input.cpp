@@ -179,3 +179,16 @@ TEST_CASE("a point file runs classical, and the consistent formulation needs its
   // A bad header names the key and the line.
   require_rejected(points_scene, {"geometry.points", "line 1", "x,y,volume"}, {{"cloud.csv", "x,y,v\n0,0,1\n"}});
 }
+
+TEST_CASE("a point given twice is named by its two lines, and a dx beyond the body is refused", "[cli][mesh]") {
+  // A repeated line ran 6% off (constant influence) or met a singular shape tensor whose
+  // message blamed the horizon; a dx of 0.5 m on a 20 mm mesh bonded every particle to every
+  // other and ran, where a lattice refuses it.
+  const std::string twice = points_csv() + "0.001500,0.002500,1e-6\n";  // particle 9 again
+  require_rejected(points_scene, {"geometry.points", "particles 9 and 16", "the same point twice"},
+                   {{"cloud.csv", twice}});
+  require_rejected(with(points_scene, "  dx: 0.001\n", "  dx: 0.01\n"),
+                   {"discretization.dx", "more than twice the body's largest extent"}, {{"cloud.csv", points_csv()}});
+  require_rejected(with(mesh_scene, "  dx: 0.001\n", "  dx: 0.5\n"),
+                   {"discretization.dx", "more than twice the body's largest extent"});
+}

@@ -488,6 +488,18 @@ TEST_CASE("Verlet refuses the improved and strong formulations by model.formulat
   }
 }
 
+TEST_CASE("a relative tolerance of 1 or more is named: it let a run stop 'converged' at its first iteration", "[cli]") {
+  // solver.tolerance 2 with displacement_tolerance 1 "converged" after 1 iteration with an
+  // equilibrium error of 1 and the top displacement at 4% of the answer, exit 0.
+  for (const std::string key : {"tolerance", "displacement_tolerance", "step_tolerance", "yield_tolerance"}) {
+    INFO(key);
+    const std::string s = key == "tolerance"
+                              ? with(tiny_scene, "  tolerance: 1.0e-6\n", "  tolerance: 2.0\n")
+                              : with(tiny_scene, "  tolerance: 1.0e-6\n", "  tolerance: 1.0e-6\n  " + key + ": 1.0\n");
+    require_rejected(s, {"solver." + key + ": must lie in (0, 1): it is relative"});
+  }
+}
+
 TEST_CASE("a non-positive energy tolerance is named", "[cli]") {
   const std::string s = with(tiny_scene, "  type: adr\n", "  type: verlet\n  energy_tolerance: 0\n");
   require_rejected(s, {at_line(s, "energy_tolerance:", "solver.energy_tolerance: must be positive")});

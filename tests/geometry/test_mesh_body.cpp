@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "../support/direct_solve.hpp"
+#include "perinom/core/error.hpp"
 #include "perinom/geometry/mesh_body.hpp"
 #include "perinom/scene/problem.hpp"
 
@@ -54,6 +55,17 @@ TEST_CASE("a mesh's particles fill the body and its facets close it, in 2-D and 
     std::size_t grouped = 0;
     for (const auto& g : body.groups) grouped += g.facets.size();
     CHECK(grouped == body.facets.size());
+  }
+}
+
+TEST_CASE("a 3-D mesh in a 2-D scene is named as not planar, before any element is read", "[geometry][mesh]") {
+  // It met "element 1 of the file's element list ... has zero area" first: the planarity
+  // check ran after the elements.
+  try {
+    mesh_body(read_gmsh(data("cube_tet.msh")), 2, 0.002);
+    FAIL("a 3-D mesh was taken for a 2-D body");
+  } catch (const InputError& e) {
+    CHECK_THAT(e.what(), Catch::StartsWith("a 2-D scene needs a mesh in a plane z = const"));
   }
 }
 
