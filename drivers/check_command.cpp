@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "layer_support_note.hpp"
 #include "locking_warning.hpp"
 #include "memory_estimate.hpp"
 #include "perinom/core/error.hpp"
@@ -93,6 +94,7 @@ int check(const Options& opt) {
     std::printf("  locking         warning: %s\n", locking.c_str());
   if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())
     std::printf("  collapse        %s\n", plastic.c_str());
+  if (const std::string layer = layer_support_note(p); !layer.empty()) std::printf("  supports        %s\n", layer.c_str());
   std::printf("  bonds           %zu (%.1f per particle)\n", p.bonds, double(p.bonds) / p.cloud.size());
   if (scene.body_files.given()) print_body(p);
   for (const auto& line : plan)

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "layer_support_note.hpp"
 #include "thin_body_note.hpp"
 
 namespace perinom::cli {
@@ -52,6 +53,7 @@ void print_body_notes(const Problem& p) {
     std::printf("perinom: warning: %s\n", locking.c_str());
   if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())
     std::printf("perinom: note: %s\n", plastic.c_str());
+  if (const std::string layer = layer_support_note(p); !layer.empty()) std::printf("perinom: note: %s\n", layer.c_str());
 }
 
 }  // namespace perinom::cli
