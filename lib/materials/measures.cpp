@@ -22,10 +22,11 @@ double max_principal_stress(const double* s) {
   return q + 2.0 * p * std::cos(std::acos(r) / 3.0);
 }
 
-double equivalent_strain(const double* H, int d) {
+double equivalent_strain(const double* H, int d, double eps_zz) {
   double eps[9] = {};
   for (int a = 0; a < d; ++a)
     for (int b = 0; b < d; ++b) eps[a * 3 + b] = 0.5 * (H[a * d + b] + H[b * d + a]);
+  if (d == 2) eps[8] = eps_zz;
   const double tr = (eps[0] + eps[4] + eps[8]) / 3.0;
   double ee = 0.0;
   for (int k = 0; k < 9; ++k) {

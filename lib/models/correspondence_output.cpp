@@ -119,7 +119,12 @@ std::vector<OutputField> CorrespondenceModel::output_fields(const double* u, boo
     OutputField H{"displacement_gradient", d * d, std::vector<double>(n * d * d)};
     gradient(u, H.values.data());
     OutputField eq{"equivalent_strain", 1, std::vector<double>(n)};
-    for (std::size_t i = 0; i < n; ++i) eq.values[i] = equivalent_strain(H.values.data() + i * d * d, d);
+    // Elastic plane stress: eps_zz = -nu / (1 - nu) (eps_xx + eps_yy); plane strain: 0.
+    const double zz = d == 2 && material_.plane == PlaneCondition::stress ? -material_.nu / (1.0 - material_.nu) : 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* Hi = H.values.data() + i * d * d;
+      eq.values[i] = equivalent_strain(Hi, d, d == 2 ? zz * (Hi[0] + Hi[3]) : 0.0);
+    }
     out.push_back(std::move(H));
     out.push_back(std::move(eq));
   }

@@ -394,7 +394,6 @@ double probe_value(const ProbeSpec& spec, std::size_t i, const ProbeFields& f) {
   const int d = f.cloud.dim;
   if (spec.field == "displacement") return f.u[i * d + axis_of(spec.component[0])];
   if (stress_field(spec.field)) return stress_probe_value(spec, f.sigma.data() + i * 9);
-  if (spec.field == "equivalent_strain") return equivalent_strain(f.H.data() + i * d * d, d);
   if (spec.field == "eq_plastic_strain")
     return f.eq_plastic_strain ? (*f.eq_plastic_strain)[i] : 0.0;
   if (f.fields)
