@@ -111,7 +111,8 @@ void ProbeHistory::write(const Problem& p, const std::string& dir) const {
   const auto probes = point_probes(p);
   for (std::size_t k = 0; k < probes.size(); ++k) {
     io::CsvWriter csv(dir + "/probe_" + probes[k]->spec.name + "_history.csv");
-    csv.header({"stage", "step", "load_factor", probes[k]->spec.field, "von_mises", "mean_stress",
+    // "value": the probe's own reading (a von_mises probe's header repeated von_mises).
+    csv.header({"stage", "step", "load_factor", "value", "von_mises", "mean_stress",
                 "equivalent_strain", "eq_plastic_strain"});
     for (const auto& row : rows) {
       std::vector<double> out(row.begin(), row.begin() + kStepColumns);

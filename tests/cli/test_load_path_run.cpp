@@ -67,6 +67,9 @@ TEST_CASE("a plastic scene writes its step table, probe histories and plastic fi
                                            "stages.1.boundary.1.Rx,stages.1.boundary.1.Ry\n") != std::string::npos);
   CHECK(lines(out / "probe_center_von_mises_history.csv") == 1 + 10);
   CHECK(lines(out / "probe_center_eq_plastic_strain_history.csv") == 1 + 10);
+  // One name per column (a von_mises probe's own column was named von_mises twice).
+  CHECK(slurp(out / "probe_center_von_mises_history.csv")
+            .rfind("stage,step,load_factor,value,von_mises,mean_stress,equivalent_strain,eq_plastic_strain\n", 0) == 0);
   const std::string summary = slurp(out / "summary.json");
   CHECK(summary.find("\"load_steps\": 10") != std::string::npos);
   CHECK(summary.find("\"particles_yielded\": 400") != std::string::npos);
