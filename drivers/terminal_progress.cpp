@@ -24,6 +24,10 @@ void TerminalProgress::update(const ProgressSample& s) {
       left = std::max(0.0, elapsed * todo / done);
       fraction = std::clamp(done / (done + std::max(0.0, todo)), 0.0, 1.0);
     }
+    // A single solve stops at its iteration limit whatever the residual's trend ("~17582 s
+    // left" two seconds before max_iterations ended it).
+    if (left >= 0.0 && s.load_steps <= 1 && s.limit > 0 && s.iteration > 0)
+      left = std::min(left, elapsed * double(std::max<std::int64_t>(0, s.limit - s.iteration)) / double(s.iteration));
   } else if (s.iteration > 0 && s.limit > 0) {
     left = elapsed * double(s.limit - s.iteration) / double(s.iteration);
   }
