@@ -435,7 +435,9 @@ Scene parse_scene(const std::string& text, const std::string& source,
                   const std::vector<std::string>& overrides) {
   YAML::Node root = load_one_document(text, source);
   if (!root.IsMap()) throw InputError(source + ": a scene is a mapping of keys to values");
-  for (const auto& o : overrides) detail::apply_override(root, o);
+  std::vector<YAML::Node> given;
+  for (const auto& o : overrides) given.push_back(detail::apply_override(root, o));
+  const detail::OverrideSources named(given, overrides);
   Scene s;
   s.source = source;
   s.canonical = canonical_text(root);

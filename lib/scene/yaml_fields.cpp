@@ -8,7 +8,33 @@
 
 namespace perinom::detail {
 
+namespace {
+
+/// The nodes the --set options of the scene being read gave, with their options.
+thread_local std::vector<std::pair<YAML::Node, std::string>>* override_nodes = nullptr;
+
+void collect(const YAML::Node& node, const std::string& assignment, std::vector<std::pair<YAML::Node, std::string>>& out) {
+  out.emplace_back(node, assignment);
+  if (node.IsSequence() || node.IsMap())
+    for (const auto& item : node) collect(node.IsMap() ? item.second : item, assignment, out);
+}
+
+}  // namespace
+
+OverrideSources::OverrideSources(const std::vector<YAML::Node>& values, const std::vector<std::string>& assignments) {
+  override_nodes = new std::vector<std::pair<YAML::Node, std::string>>();
+  for (std::size_t k = 0; k < values.size(); ++k) collect(values[k], assignments[k], *override_nodes);
+}
+
+OverrideSources::~OverrideSources() {
+  delete override_nodes;
+  override_nodes = nullptr;
+}
+
 std::string where(const std::string& source, const YAML::Node& node) {
+  if (override_nodes && node.IsDefined())
+    for (const auto& given : *override_nodes)
+      if (node.is(given.first)) return "--set " + given.second + ": ";
   const auto m = node.Mark();
   if (m.line < 0) return source + ": ";
   return source + ":" + std::to_string(m.line + 1) + ": ";
@@ -193,7 +219,7 @@ void require_closed_quotes(const std::string& text, const std::string& source) {
                      (open == '"' ? "double" : "single") + "-quoted string that starts on this line is never closed");
 }
 
-void apply_override(YAML::Node& root, const std::string& assignment) {
+YAML::Node apply_override(YAML::Node& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
     throw InputError("--set " + assignment + ": expected dotted.key=value");
@@ -231,6 +257,7 @@ void apply_override(YAML::Node& root, const std::string& assignment) {
   } catch (const YAML::Exception& e) {
     throw InputError("--set " + path + ": cannot set this key (" + e.msg + ")");
   }
+  return value;
 }
 
 void set_path(YAML::Node& root, const std::vector<std::string>& parts, const YAML::Node& value,

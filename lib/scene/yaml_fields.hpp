@@ -52,14 +52,26 @@ class Fields {
 void set_path(YAML::Node& root, const std::vector<std::string>& parts, const YAML::Node& value,
               const std::string& path);
 
-/// Applies one "dotted.key=value" override to the YAML tree.
-void apply_override(YAML::Node& root, const std::string& assignment);
+/// Applies one "dotted.key=value" override to the YAML tree; returns the value's node.
+YAML::Node apply_override(YAML::Node& root, const std::string& assignment);
+
+/// While alive, where() names the nodes of these overrides (each value's node and the nodes
+/// inside it) by their --set option, not by a line of the scene file (a bad --set value was
+/// reported at line 1 of the file).
+class OverrideSources {
+ public:
+  OverrideSources(const std::vector<YAML::Node>& values, const std::vector<std::string>& assignments);
+  ~OverrideSources();
+  OverrideSources(const OverrideSources&) = delete;
+  OverrideSources& operator=(const OverrideSources&) = delete;
+};
 
 /// yaml-cpp reads a quoted string that is never closed to the end of the file, taking every
 /// key below it as text. Throws an InputError naming the line where such a quote opens.
 void require_closed_quotes(const std::string& text, const std::string& source);
 
-/// "file:line: " for a node (line counted from 1), or "file: " when unknown.
+/// "file:line: " for a node (line counted from 1), "--set key=value: " for a node a --set
+/// gave (OverrideSources), or "file: " when unknown.
 std::string where(const std::string& source, const YAML::Node& node);
 
 }  // namespace perinom::detail

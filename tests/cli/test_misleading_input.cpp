@@ -165,3 +165,13 @@ TEST_CASE("a load that acts only on components held at their particles is refuse
     CHECK(perinom(dir, "check scene.yaml").exit_code == 0);
   }
 }
+
+TEST_CASE("a bad --set value is named by its --set option, not by a line of the scene file", "[cli]") {
+  // --set material.E=abc was reported as "scene.yaml:1: material.E: must be a number".
+  require_rejected(tiny_scene, {"--set material.E=abc: material.E: must be a number"}, "--set material.E=abc");
+  require_rejected(tiny_scene, {"--set boundary.1={region: top, pressure: x}: boundary[1].pressure: must be a number"},
+                   "--set 'boundary.1={region: top, pressure: x}'");
+  // A key of the file itself keeps its line.
+  const std::string s = with(tiny_scene, "  nu: 0.25\n", "  nu: 0.75\n");
+  require_rejected(s, {at_line(s, "nu:", "material.nu")}, "--set material.E=2.0e9");
+}
