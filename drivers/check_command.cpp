@@ -16,6 +16,7 @@
 #include "perinom/solvers/jacobian.hpp"
 #include "perinom/solvers/petsc.hpp"
 #include "stability_check.hpp"
+#include "support_check.hpp"
 #include "thin_body_note.hpp"
 
 namespace perinom::cli {
@@ -95,6 +96,7 @@ int check(const Options& opt) {
   if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())
     std::printf("  collapse        %s\n", plastic.c_str());
   if (const std::string layer = layer_support_note(p); !layer.empty()) std::printf("  supports        %s\n", layer.c_str());
+  if (!scene.solver.type.empty() && scene.solver.type != "verlet") warn_if_free(p);  // as run warns before a static solve
   std::printf("  bonds           %zu (%.1f per particle)\n", p.bonds, double(p.bonds) / p.cloud.size());
   if (scene.body_files.given()) print_body(p);
   for (const auto& line : plan)

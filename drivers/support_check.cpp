@@ -53,6 +53,54 @@ std::string describe(const std::vector<FreeRigidMotion>& free, int d) {
   return text;
 }
 
+/// One piece of the body: its particles (flags), how many, and their centroid.
+struct Piece {
+  std::vector<std::uint8_t> within;
+  std::size_t count = 0;
+  std::array<double, 3> centroid{0, 0, 0};
+};
+
+Piece piece_of(const PointCloud& cloud, const Pieces& pieces, std::int32_t c) {
+  const int d = cloud.dim;
+  Piece out;
+  out.within.assign(cloud.size(), 0);
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (pieces.piece[i] == c) {
+      out.within[i] = 1, ++out.count;
+      for (int a = 0; a < d; ++a) out.centroid[a] += cloud.x[i * d + a];
+    }
+  for (int a = 0; a < d; ++a) out.centroid[a] /= static_cast<double>(std::max<std::size_t>(out.count, 1));
+  return out;
+}
+
+/// The pieces of an intact correspondence body (joined by its bonds; a precrack may cut it),
+/// or none for other models.
+Pieces intact_pieces(const Problem& p) {
+  const auto* model = dynamic_cast<const CorrespondenceModel*>(p.model.get());
+  return model ? body_pieces(model->G().graph(), {}) : Pieces{};
+}
+
+/// Warns of the free motions of each piece of a body in pieces (no bond joins them: a mesh of
+/// two parts, a precrack across): a piece held in y only stood still in the whole body's
+/// check, which counted the other piece's supports, and ADR ran its 200,000 iterations.
+bool check_pieces(const Problem& p, const Pieces& pieces, const Loading& loading, const std::string& where) {
+  const int d = p.cloud.dim;
+  bool any = false;
+  for (std::int32_t c = 0; c < pieces.count; ++c) {
+    const Piece piece = piece_of(p.cloud, pieces, c);
+    const std::vector<FreeRigidMotion> free = free_rigid_motions(p.cloud, loading, piece.within);
+    if (free.empty()) continue;
+    std::fprintf(stderr,
+                 "perinom: warning: %s: the body is in %d pieces that no bond joins, and the supports leave the piece "
+                 "of %zu particle(s) around %s %zu rigid motion(s) free: it can %s. A static balance needs every "
+                 "piece held (hold more components of that piece)\n",
+                 where.c_str(), static_cast<int>(pieces.count), piece.count, point(piece.centroid, d).c_str(),
+                 free.size(), describe(free, d).c_str());
+    any = true;
+  }
+  return any;
+}
+
 /// Warns of the free motions of the body (a plate's when `plate` is set), saying where.
 bool check(const PointCloud& cloud, const ThinPlateModel* plate, const Loading& loading, const std::string& where) {
   const std::vector<FreeRigidMotion> free =
@@ -74,9 +122,13 @@ bool check(const PointCloud& cloud, const ThinPlateModel* plate, const Loading& 
 bool warn_if_free(const Problem& p) {
   const auto* plate = dynamic_cast<const ThinPlateModel*>(p.model.get());
   if (!plate && p.physics().dofs_per_particle() != p.cloud.dim) return false;
-  if (p.stages.empty()) return check(p.cloud, plate, p.loading, "boundary");
+  const Pieces pieces = plate ? Pieces{} : intact_pieces(p);
+  auto one = [&](const Loading& loading, const std::string& where) {
+    return pieces.count > 1 ? check_pieces(p, pieces, loading, where) : check(p.cloud, plate, loading, where);
+  };
+  if (p.stages.empty()) return one(p.loading, "boundary");
   bool any = false;
-  for (const LoadStage& st : p.stages) any = check(p.cloud, plate, st.loading, "stage '" + st.name + "'") || any;
+  for (const LoadStage& st : p.stages) any = one(st.loading, "stage '" + st.name + "'") || any;
   return any;
 }
 
@@ -96,24 +148,16 @@ bool explain_free_pieces(const Problem& p, const History& steps) {
   const int d = p.cloud.dim;
   int named = 0, more = 0;
   for (std::int32_t c = 0; c < pieces.count; ++c) {
-    std::vector<std::uint8_t> within(p.cloud.size(), 0);
-    std::size_t n = 0;
-    std::array<double, 3> at{0, 0, 0};
-    for (std::size_t i = 0; i < p.cloud.size(); ++i)
-      if (pieces.piece[i] == c) {
-        within[i] = 1, ++n;
-        for (int a = 0; a < d; ++a) at[a] += p.cloud.x[i * d + a];
-      }
-    const std::vector<FreeRigidMotion> free = free_rigid_motions(p.cloud, p.stages[k].loading, within);
+    const Piece piece = piece_of(p.cloud, pieces, c);
+    const std::vector<FreeRigidMotion> free = free_rigid_motions(p.cloud, p.stages[k].loading, piece.within);
     if (free.empty()) continue;
     if (named == 3) {
       ++more;
       continue;
     }
-    for (int a = 0; a < d; ++a) at[a] /= static_cast<double>(n);
     std::printf("perinom: note: in stage '%s' the cracks have left a piece of %zu particle(s) around %s (of %d "
                 "piece(s), %zu detached particle(s) apart) that its supports do not hold: it can %s\n",
-                p.stages[k].name.c_str(), n, point(at, d).c_str(), static_cast<int>(pieces.count),
+                p.stages[k].name.c_str(), piece.count, point(piece.centroid, d).c_str(), static_cast<int>(pieces.count),
                 G.detached().size(), describe(free, d).c_str());
     ++named;
   }

@@ -9,6 +9,7 @@
 
 #include "perinom/core/error.hpp"
 #include "perinom/fracture/critical_stretch.hpp"
+#include "perinom/fracture/pieces.hpp"
 #include "perinom/geometry/boundary_facets.hpp"
 #include "perinom/geometry/mesh_body.hpp"
 #include "perinom/geometry/point_file.hpp"
@@ -347,7 +348,17 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   p.loading = make_loading(s, s.boundary, p.cloud, face_of, data);
   std::vector<FaceOf> stage_faces;
   add_stages(p, data, stage_faces);
-  if (s.constraints == "rigid_body") pin_rigid_body(p, model->trace().empty());
+  if (s.constraints == "rigid_body") {
+    // Its pins hold one body: on a body in pieces they held one piece twice over and left
+    // the other free (Newton then blamed a missing boundary condition on the user).
+    const Pieces pieces = body_pieces(model->G().graph(), {});
+    if (pieces.count > 1)
+      throw InputError(s.source + ": constraints: rigid_body holds one body, and this one is in " +
+                       std::to_string(pieces.count) + " pieces that no bond joins (particles 0 and " +
+                       std::to_string(std::find(pieces.piece.begin(), pieces.piece.end(), 1) - pieces.piece.begin()) +
+                       " lie in different ones): hold each piece by supports");
+    pin_rigid_body(p, model->trace().empty());
+  }
   if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, model->G(), data);
   // The seed's collocation formulations keep collocated constraints (loading.hpp).
   const bool collocated = opt.formulation == Formulation::improved || opt.formulation == Formulation::strong;

@@ -243,6 +243,34 @@ TEST_CASE("a load on held dofs only is carried by the support at u = 0, and ADR 
   CHECK(std::abs(json_number(r.summary, "sxx_center")) < 1e-6);
 }
 
+TEST_CASE("a body in pieces is checked piece by piece, and rigid_body refuses it", "[cli][supports]") {
+  // Two pieces, the second held in y only: the whole body's check counted the first piece's
+  // supports, said nothing, and ADR ran its 200,000 iterations; rigid_body's three pins held
+  // one piece and Newton blamed a missing boundary condition.
+  const std::string cut = "precracks:\n  - {from: [-0.001, 0.0051], to: [0.021, 0.0051]}\n";
+  const std::string held = with(with(with(free_plate, "constraints: rigid_body\n", "model: {formulation: classical}\n" + cut),
+                                     "  - {region: left, traction: [-1.0e6, 0.0]}\n",
+                                     "  - {region: bottom, fix: [x, y]}\n  - {region: top, fix: [y]}\n"),
+                                "  - {region: right, traction: [1.0e6, 0.0]}\n", "  - {region: right, traction: [0.0, 1.0e5]}\n");
+  const fs::path d = fs::temp_directory_path() / "perinom_supports_pieces";
+  fs::remove_all(d);
+  fs::create_directories(d);
+  std::ofstream(d / "scene.yaml") << held;
+  const std::string cmd = "cd '" + d.string() + "' && '" PERINOM_EXE "' check scene.yaml >out.txt 2>err.txt";
+  CHECK(std::system(cmd.c_str()) == 0);
+  const std::string err = slurp(d / "err.txt");
+  INFO(err);
+  CHECK(err.find("the body is in 2 pieces that no bond joins, and the supports leave the piece of 100 particle(s) "
+                 "around (0.01, 0.0075) m 1 rigid motion(s) free: it can move along (1, 0)") != std::string::npos);
+  fs::remove_all(d);
+  const Run r = run("pieces_rigid", with(free_plate, "constraints: rigid_body\n",
+                                         "constraints: rigid_body\nmodel: {formulation: classical}\n" + cut));
+  INFO(r.out << r.err);
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("constraints: rigid_body holds one body, and this one is in 2 pieces that no bond joins") !=
+        std::string::npos);
+}
+
 TEST_CASE("the clamped face of a 3-D cantilever reacts to the tip shear", "[cli][supports]") {
   // L = 100 mm, 10 x 10 mm, 1 MPa of shear in -z on the tip face: 100 N down, so the clamp
   // pushes up with 100 N (reaction = -applied load) and holds the moment.
