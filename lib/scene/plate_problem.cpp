@@ -51,10 +51,17 @@ PlateFrame plate_frame(const Scene& s) {
   for (int e = 0; e < 4; ++e)
     if (edges[e] != EdgeSupport::free)
       for (const ParticleId i : plate.edge_nodes(e)) p.loading.fix(i, 0.0);
+  std::vector<std::uint8_t> held(plate.physical, 0);
+  for (const auto dof : p.loading.fixed) held[dof] = 1;
   for (const auto& b : s.boundary) {
     if (!b.pressure) continue;
     const auto ids = select(b.region, s.geometry, p.cloud);
     if (ids.empty()) throw InputError(b.where + ".region: selects no particle");
+    // A pressure on supported edge nodes only goes whole into the supports (the centre read
+    // w = 0, exit 0); a correspondence scene refuses the like (scene_loading.cpp).
+    if (std::all_of(ids.begin(), ids.end(), [&](ParticleId i) { return held[i] != 0; }))
+      throw InputError(b.where + ".pressure: acts only on nodes of supported edges, held at w = 0: the whole load goes "
+                                 "into the supports and bends nothing (a pressure over the plate: region: all)");
     if (p.loading.force.empty()) p.loading.force.assign(plate.physical, 0.0);
     for (const auto i : ids) p.loading.force[i] += *b.pressure * plate.area[i];
   }

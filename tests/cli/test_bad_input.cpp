@@ -413,6 +413,11 @@ TEST_CASE("thin_plate keys are checked, each by its key", "[cli][plate]") {
     const std::string s = with(plate_scene, "  type: thin_plate\n", "  type: thin_plate\n  formulation: strong\n");
     require_rejected(s, {at_line(s, "formulation:", "model.formulation: is a correspondence option")});
   }
+  SECTION("a pressure on supported edge nodes only is refused: it bent nothing, exit 0") {
+    const std::string s = with(plate_scene, "{region: all, pressure: 100.0}",
+                               "{region: {box: {min: [0.0, 0.0], max: [0.001, 0.1]}}, pressure: 100.0}");
+    require_rejected(s, {at_line(s, "pressure: 100.0", "boundary[2].pressure: acts only on nodes of supported edges")});
+  }
   SECTION("lbc has nothing to correct on an elastic plate") {
     require_rejected(plate_scene + "solver: {type: lbc}\n", {"solver.type: a thin_plate is elastic: solve it by adr or newton"});
   }
