@@ -9,13 +9,6 @@
 #include "perinom/core/thread_governor.hpp"
 
 namespace perinom {
-namespace {
-
-/// A relative residual this small is equilibrium to rounding (sums over many dofs reach about
-/// n eps; the helper's u = 0 case sat at 3e-17).
-constexpr double kRoundingResidual = 1e-13;
-
-}  // namespace
 
 AdrRelaxation::AdrRelaxation(Model& model, const AdrOptions& opt, Progress* progress)
     : model_(model), opt_(opt), progress_(progress) {
@@ -121,11 +114,8 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
   while (rep.iterations < opt_.max_iterations) {
     governor.tick();
     // The seed's criterion (eq. 33) alone stops a solve that has barely moved; the
-    // residual criterion makes sure it is in equilibrium. A residual at rounding level is
-    // equilibrium whatever the change: where the answer is u = 0 (every load on held dofs)
-    // the change relative to u measures rounding noise and never fell (200,000 iterations at
-    // a residual of 3e-17, "NOT converged").
-    if (!first && r <= opt_.tolerance && (du <= opt_.displacement_tolerance || r <= kRoundingResidual)) {
+    // residual criterion makes sure it is in equilibrium.
+    if (!first && r <= opt_.tolerance && du <= opt_.displacement_tolerance) {
       converged = true;
       break;
     }

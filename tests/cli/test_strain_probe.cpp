@@ -34,7 +34,7 @@ double equivalent(double exx, double eyy, double ezz) {
 
 }  // namespace
 
-TEST_CASE("the equivalent strain of plane stress counts eps_zz; plane strain's is 0", "[cli]") {
+TEST_CASE("the equivalent strain of plane stress counts eps_zz, plane strain has none", "[cli]") {
   const double E = 200.0e9, nu = 0.3, sx = 1.0e6, sy = 0.4e6;
   struct Case {
     const char* name;

@@ -71,7 +71,10 @@ boundary:
   for (std::size_t k = 1; k < stretch.force.size(); k += 2) stretch.force[k] = 0.0;
   AdrOptions opt;
   opt.tolerance = 1e-8;
-  opt.displacement_tolerance = 1e-10;
+  // 1e-10 stopped the soft bending early on one machine (an AMD EPYC build with
+  // -march=native: 1.8e-5 of the largest displacement from the direct solve, against 1e-6);
+  // 1e-12 leaves it 1e-11 off there, the comparison below unchanged.
+  opt.displacement_tolerance = 1e-12;
   long first[2] = {0, 0}, second = 0;
   std::vector<double> u;
   for (int on = 1; on >= 0; --on) {
