@@ -48,6 +48,15 @@ void check_body_size(const Body& body, const Scene& s) {
                   s.discretization.dx, extent, body.mean_size);
     throw InputError(s.source + text);
   }
+  const double delta = s.discretization.horizon_ratio * s.discretization.dx;
+  if (s.discretization.horizon_ratio > 0.0 && delta > 2.0 * std::max(extent, body.mean_size)) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  ": discretization.horizon.ratio: gives a horizon (%g m) more than twice the body's largest extent "
+                  "(%g m): every particle would bond with every other",
+                  delta, extent);
+    throw InputError(s.source + text);
+  }
   if (!s.body_files.mesh.empty() || c.size() < 2) return;
   const Families nearest = knn_families(c, 1);
   for (std::size_t i = 0; i < c.size(); ++i) {

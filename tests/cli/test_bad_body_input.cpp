@@ -191,4 +191,6 @@ TEST_CASE("a point given twice is named by its two lines, and a dx beyond the bo
                    {"discretization.dx", "more than twice the body's largest extent"}, {{"cloud.csv", points_csv()}});
   require_rejected(with(mesh_scene, "  dx: 0.001\n", "  dx: 0.5\n"),
                    {"discretization.dx", "more than twice the body's largest extent"});
+  require_rejected(with(mesh_scene, "ratio: 3.015", "ratio: 100.0"),
+                   {"discretization.horizon.ratio", "more than twice the body's largest extent"});
 }

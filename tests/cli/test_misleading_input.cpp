@@ -175,3 +175,10 @@ TEST_CASE("a bad --set value is named by its --set option, not by a line of the 
   const std::string s = with(tiny_scene, "  nu: 0.25\n", "  nu: 0.75\n");
   require_rejected(s, {at_line(s, "nu:", "material.nu")}, "--set material.E=2.0e9");
 }
+
+TEST_CASE("a horizon more than twice the body is refused by key: every particle would bond with every other", "[cli]") {
+  // horizon.ratio 1e6 on the Kalthoff plate (a fuzzed scene) built 10 million bonds and a
+  // gigabyte before any answer.
+  const std::string s = with(tiny_scene, "ratio: 3.015", "ratio: 1.0e6");
+  require_rejected(s, {at_line(s, "ratio: 1.0e6", "discretization.horizon.ratio: gives a horizon"), "every particle"});
+}
