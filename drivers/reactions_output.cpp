@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "perinom/solvers/rounding_force.hpp"
+
 namespace perinom::cli {
 namespace {
 
@@ -49,7 +51,7 @@ io::Json pin_results(const Problem& p) {
 }
 
 void add_reaction_results(Model& model, const Loading& loading, double s, const std::vector<double>& u,
-                          bool dynamic, io::Json& summary, double carried) {
+                          bool dynamic, io::Json& summary, double carried, double rounding) {
   if (!loading.has_supports()) return;
   const int dpp = model.dofs_per_particle();
   std::vector<double> fint(model.dofs()), R(loading.support_names.size() * dpp);
@@ -82,8 +84,13 @@ void add_reaction_results(Model& model, const Loading& loading, double s, const 
   const double net = length(applied.data(), dpp);
   const bool balanced = net <= 1e-6 * gross;
   const bool broke = gross == 0.0 && carried > largest;  // carried: a load path broken apart
-  const double scale = !balanced ? net : gross > 0.0 ? gross : broke ? carried : largest;
-  const char* over = !balanced ? "|applied|" : gross > 0.0 ? "sum |nodal load|" : broke ? "largest reaction carried" : "largest reaction";
+  const bool noise = rounding > 0.0;  // loads and reactions at rounding: the stiffness force
+  const double scale = noise ? rounding : !balanced ? net : gross > 0.0 ? gross : broke ? carried : largest;
+  const char* over = noise      ? "stiffness force (the loads and reactions are rounding)"
+                     : !balanced ? "|applied|"
+                     : gross > 0.0 ? "sum |nodal load|"
+                     : broke      ? "largest reaction carried"
+                                  : "largest reaction";
   const double error = scale > 0.0 ? length(sum.data(), dpp) / scale : 0.0;
   std::printf("perinom: equilibrium: applied loads %s N, reactions %s N, error |applied + reactions| / %s = %.3e\n",
               vector_text(applied.data(), dpp).c_str(), vector_text(total.data(), dpp).c_str(), over, error);
@@ -95,6 +102,25 @@ void add_reaction_results(Model& model, const Loading& loading, double s, const 
   eq["relative_to"] = std::string(over);
   eq["scale"] = scale;  // N: the value of relative_to
   summary["equilibrium"] = eq;
+}
+
+void add_rounding_floor(const SolveReport& rep, io::Json& solver) {
+  if (rep.stiffness_force <= 0.0) return;  // a dynamic run, or a solver that does not measure it
+  solver["residual_force"] = rep.residual_force;
+  solver["stiffness_force"] = rep.stiffness_force;
+  solver["at_rounding_floor"] = rep.at_rounding_floor;
+}
+
+std::string residual_text(const SolveReport& rep) {
+  char text[320];
+  if (rep.at_rounding_floor)
+    std::snprintf(text, sizeof text,
+                  "residual %.3e over loads and reactions that are rounding; the residual force %.3e N is below the "
+                  "%.3e N rounding leaves in internal forces of %.3e N",
+                  rep.residual, rep.residual_force, rounding_force(rep.stiffness_force), rep.stiffness_force);
+  else
+    std::snprintf(text, sizeof text, "residual %.3e", rep.residual);
+  return text;
 }
 
 }  // namespace perinom::cli

@@ -6,6 +6,7 @@
 
 #include "perinom/io/json_writer.hpp"
 #include "perinom/scene/problem.hpp"
+#include "perinom/solvers/adr.hpp"
 
 namespace perinom::cli {
 
@@ -22,7 +23,19 @@ io::Json pin_results(const Problem& p);
 /// A distributed model's sums go over the ranks (every rank calls it). `carried` (N, 0: none)
 /// is the largest reaction a load path had before its end: after the body has broken apart,
 /// the last reactions are noise, and the error is taken over the load it carried instead.
+/// `rounding` (N, 0: none): a solve that converged at its rounding floor passes its
+/// stiffness force (SolveReport): the loads and reactions are rounding, and the error is taken
+/// over the size of the forces the internal force sums instead.
 void add_reaction_results(Model& model, const Loading& loading, double s, const std::vector<double>& u,
-                          bool dynamic, io::Json& summary, double carried = 0.0);
+                          bool dynamic, io::Json& summary, double carried = 0.0, double rounding = 0.0);
+
+/// For a static solve: solver.residual_force (N, |F| at the end), solver.stiffness_force (N,
+/// the size of the forces the internal force sums) and solver.at_rounding_floor (converged
+/// with |F| below their rounding while the relative residual was not below the tolerance).
+void add_rounding_floor(const SolveReport& rep, io::Json& solver);
+
+/// "residual R" for the closing line of a static run; for a solve that converged at its
+/// rounding floor, also why R is large: the residual force against the rounding.
+std::string residual_text(const SolveReport& rep);
 
 }  // namespace perinom::cli

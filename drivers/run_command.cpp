@@ -213,6 +213,7 @@ int run(const Options& opt) {
   solver["converged"] = converged;
   solver["residual"] = rep.residual;
   solver["displacement_change"] = rep.displacement_change;
+  add_rounding_floor(rep, solver);
   if (scene.load_path()) solver["load_steps"] = static_cast<long long>(steps_done);
   if (dynamic) {
     solver["stable_time_step"] = rep.stable_time_step;
@@ -280,7 +281,7 @@ int run(const Options& opt) {
       }
     }
     add_reaction_results(p.physics(), scene.load_path() ? p.stages.back().loading : p.loading, s_end, u, dynamic, summary,
-                         carried);
+                         carried, rep.at_rounding_floor ? rep.stiffness_force : 0.0);
     check_small_strain(p, u, summary);
   }
   if (scene.solver.check == "newton" && failure.empty()) {
@@ -322,9 +323,9 @@ int run(const Options& opt) {
                 static_cast<long long>(steps_done), static_cast<long long>(rep.iterations),
                 solver_of(scene).iterations_of.c_str(), dir.c_str());
   else
-    std::printf("perinom: %s after %lld iterations (residual %.3e); results in %s\n",
+    std::printf("perinom: %s after %lld iterations (%s); results in %s\n",
                 rep.converged ? "converged" : "NOT converged", static_cast<long long>(rep.iterations),
-                rep.residual, dir.c_str());
+                residual_text(rep).c_str(), dir.c_str());
   return rep.converged ? 0 : 1;
 }
 

@@ -249,6 +249,7 @@ int run_distributed(const Options& opt) {
   solver["converged"] = converged;
   solver["residual"] = rep.residual;
   solver["displacement_change"] = rep.displacement_change;
+  add_rounding_floor(rep, solver);
   if (scene.load_path()) solver["load_steps"] = static_cast<long long>(steps_done);
   if (dynamic) {
     solver["stable_time_step"] = rep.stable_time_step;
@@ -269,7 +270,8 @@ int run_distributed(const Options& opt) {
   }
   if (rep.failure.empty()) {
     const double s_end = dynamic && scene.solver.ramp_time > 0.0 ? std::min(1.0, rep.end_time / scene.solver.ramp_time) : 1.0;
-    add_reaction_results(distributed, scene.load_path() ? stages.back().loading : loading, s_end, u, dynamic, summary);
+    add_reaction_results(distributed, scene.load_path() ? stages.back().loading : loading, s_end, u, dynamic, summary,
+                         0.0, rep.at_rounding_floor ? rep.stiffness_force : 0.0);
     check_small_strain_over_ranks(run, u, summary);
   }
   summary["probes"] = probes;
@@ -301,9 +303,9 @@ int run_distributed(const Options& opt) {
                 static_cast<long long>(steps_done), static_cast<long long>(rep.iterations),
                 solver_of(scene).iterations_of.c_str(), world.size, dir.c_str());
   else
-    std::printf("perinom: %s after %lld iterations (residual %.3e) on %d ranks; results in %s\n",
-                rep.converged ? "converged" : "NOT converged", static_cast<long long>(rep.iterations), rep.residual,
-                world.size, dir.c_str());
+    std::printf("perinom: %s after %lld iterations (%s) on %d ranks; results in %s\n",
+                rep.converged ? "converged" : "NOT converged", static_cast<long long>(rep.iterations),
+                residual_text(rep).c_str(), world.size, dir.c_str());
   return rep.converged ? 0 : 1;
 }
 

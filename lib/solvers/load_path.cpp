@@ -88,6 +88,13 @@ std::string where(const LoadStage& stage, int k, int step) {
   return stage_name(stage, k) + " load step " + std::to_string(step);
 }
 
+/// The path's report keeps its last balance's residual force, stiffness force and rounding
+/// floor (the final state's, for the closing line and the equilibrium error).
+void keep_floor(const SolveReport& step, SolveReport& path) {
+  path.residual_force = step.residual_force, path.stiffness_force = step.stiffness_force;
+  path.at_rounding_floor = step.at_rounding_floor;
+}
+
 }  // namespace
 
 bool parse_load_path_scheme(const std::string& type, LoadPathScheme& s) {
@@ -230,6 +237,7 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
         if (!tangent) throw std::invalid_argument("solve_load_path: the Newton scheme needs a model with a tangent");
         const SolveReport nr = solve_newton(*tangent, stage.loading, nopt, u, progress);
         rep.iterations += nr.iterations;
+        keep_floor(nr, rep);
         // (Newton's failures name their load step.)
         const std::string in_stage = stage_name(stage, int(k)) + ": ";
         if (nr.diverged) throw DivergenceError(in_stage + nr.failure, done + nr.diverged_at);
@@ -333,6 +341,7 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
           if (follow_density) changes->stable_step(), adr->raise_density(changes->row_sums());
         }
         rep.iterations += r.iterations;
+        keep_floor(balance, rep);
         if (r.broken > 0) ++rep.changes.changing_steps;
         if (plastic) plastic->commit(u.data());
         record(r, xi0, t0);

@@ -38,6 +38,14 @@ TEST_CASE("ADR converges on a small bar to the direct solution and near the anal
   WARN("bar tip: ADR " << u[tip * 2] << " m, analytic " << analytic << " m, relative difference "
                        << rel << " (classical surface effect), " << rep.iterations << " iterations");
   CHECK(rel < 0.05);
+  // The history ends at the state returned, whatever history_every skipped: its last row is
+  // the report's.
+  REQUIRE(rep.history.rows() > 0);
+  CHECK(rep.iterations % opt.history_every != 0);  // (else the row was there before)
+  CHECK(rep.history.at(rep.history.rows() - 1, 0) == double(rep.iterations));
+  CHECK(rep.history.at(rep.history.rows() - 1, 2) == rep.residual);
+  CHECK(rep.history.at(rep.history.rows() - 1, 3) == rep.displacement_change);
+  CHECK_FALSE(rep.at_rounding_floor);
 }
 
 TEST_CASE("ADR stops cleanly on NaN, says why and keeps a finite state", "[solvers]") {

@@ -25,6 +25,13 @@ struct SolveReport {
   std::int64_t iterations = 0;
   double residual = 0.0;             ///< final relative residual
   double displacement_change = 0.0;  ///< final relative displacement increment
+  /// Static solves: the final residual force |F| (N) and the size of the terms the internal
+  /// force at the final u sums (rounding_force.hpp, N). at_rounding_floor: converged with |F|
+  /// below their rounding while the relative residual was above the tolerance, because the
+  /// loads and reactions it is measured against are rounding themselves (a stress-free
+  /// rigid motion).
+  double residual_force = 0.0, stiffness_force = 0.0;
+  bool at_rounding_floor = false;
   double stable_time_step = 0.0;     ///< Verlet only (s)
   double end_time = 0.0;             ///< Verlet only: simulated time reached (s)
   std::string failure;               ///< why the solve stopped early (NaN or Inf), or empty

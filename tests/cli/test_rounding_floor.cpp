@@ -1,0 +1,94 @@
+// A static solve whose loads and reactions are rounding themselves: a body moved rigidly by
+// its supports (no strain, no force), or loaded only on held dofs (u = 0). The relative
+// residual is then rounding over rounding. ADR ran its 200,000 iterations and said NOT
+// converged on answers right to 1e-13; Newton said converged with a residual of 3.1. Both now
+// stop at the rounding floor of the internal force (solvers/rounding_force.hpp) and say so.
+#include "../support/cli.hpp"
+#include "../support/slurp.hpp"
+
+using namespace cli_test;
+using test_support::json_number;
+
+namespace {
+
+/// A 100 x 20 mm plane-strain bar translated 1 mm in y by two point supports.
+const std::string translated = R"(name: tr
+dimension: 2
+geometry: {box: {min: [0.0, 0.0], max: [0.1, 0.02]}}
+discretization: {dx: 0.0025, horizon: {ratio: 3.015}}
+material: {type: linear_elastic, E: 1.0e9, nu: 0.3, density: 1000.0, plane: strain}
+boundary:
+  - {region: {point: [0.05, 0.01]}, displacement: {x: 0.0, y: 1.0e-3}}
+  - {region: {point: [0.1, 0.01]}, displacement: {y: 1.0e-3}}
+solver: {type: adr}
+probes:
+  - {name: corner_uy, point: [0.0, 0.0], field: displacement, component: y}
+  - {name: corner_sxx, point: [0.0, 0.0], field: stress, component: xx}
+)";
+
+/// The same bar held at its left face and pulled there: every load acts on held dofs.
+const std::string held = R"(name: held
+dimension: 2
+geometry: {box: {min: [0.0, 0.0], max: [0.1, 0.02]}}
+discretization: {dx: 0.0025, horizon: {ratio: 3.015}}
+material: {type: linear_elastic, E: 1.0e9, nu: 0.3, density: 1000.0, plane: strain}
+boundary:
+  - {region: left, fix: [x, y], at: face}
+  - {region: left, traction: [1.0e6, 0.0]}
+solver: {type: adr}
+probes:
+  - {name: tip_ux, point: [0.1, 0.01], field: displacement, component: x}
+)";
+
+bool has(const std::string& text, const std::string& needle) { return text.find(needle) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("a rigid translation converges at the rounding floor, by ADR and by Newton, and says so", "[cli][solvers]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "tr.yaml") << translated;
+  for (const std::string solver : {"adr", "newton"}) {
+    INFO(solver);
+    const Outcome o = perinom(dir, "run tr.yaml --out " + solver + " --set solver.type=" + solver);
+    INFO(o.out << o.err);
+    REQUIRE(o.exit_code == 0);
+    CHECK(has(o.out, "converged after"));
+    CHECK(has(o.out, "over loads and reactions that are rounding"));
+    CHECK(has(o.out, "/ stiffness force (the loads and reactions are rounding)"));
+    const std::string summary = slurp(dir.path / solver / "summary.json");
+    CHECK(has(summary, "\"at_rounding_floor\": true"));
+    CHECK(json_number(summary, "residual_force") <= 4.0 * 2.220446e-16 * json_number(summary, "stiffness_force"));
+    // The equilibrium error over the stiffness force: rounding, where over the reactions it read 0.6.
+    CHECK(json_number(summary, "error") < 1e-12);
+    CHECK(json_number(summary, "corner_uy") == Approx(1.0e-3).epsilon(1e-9));
+    CHECK(std::abs(json_number(summary, "corner_sxx")) < 1e-3);  // Pa, against E u / L = 1e7
+  }
+}
+
+TEST_CASE("loads only on held dofs (u = 0) converge at once by ADR, not at the rounding floor", "[cli][solvers]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "held.yaml") << held;
+  const Outcome o = perinom(dir, "run held.yaml --out out");
+  INFO(o.out << o.err);
+  REQUIRE(o.exit_code == 0);
+  CHECK(has(o.out, "converged after"));
+  CHECK_FALSE(has(o.out, "that are rounding"));
+  const std::string summary = slurp(dir.path / "out" / "summary.json");
+  CHECK(has(summary, "\"at_rounding_floor\": false"));
+  CHECK(json_number(summary, "iterations") < 100);  // (200,000 and NOT converged before)
+  CHECK(json_number(summary, "residual") < 1e-12);
+  CHECK(std::abs(json_number(summary, "tip_ux")) < 1e-15);
+}
+
+TEST_CASE("a loaded bar does not meet the rounding floor: its residual meets the tolerance", "[cli][solvers]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "pulled.yaml")
+      << with(held, "  - {region: left, traction: [1.0e6, 0.0]}", "  - {region: right, traction: [1.0e6, 0.0]}");
+  const Outcome o = perinom(dir, "run pulled.yaml --out out");
+  INFO(o.out << o.err);
+  REQUIRE(o.exit_code == 0);
+  const std::string summary = slurp(dir.path / "out" / "summary.json");
+  CHECK(has(summary, "\"at_rounding_floor\": false"));
+  CHECK(json_number(summary, "residual") <= 1e-8);
+  CHECK(json_number(summary, "residual_force") > 4.0 * 2.220446e-16 * json_number(summary, "stiffness_force"));
+}
