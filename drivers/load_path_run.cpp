@@ -7,6 +7,7 @@
 
 #include "perinom/core/timer.hpp"
 #include "perinom/io/csv_writer.hpp"
+#include "diagnostics.hpp"
 #include "difference.hpp"
 #include "run_output.hpp"
 #include "snapshot.hpp"
@@ -86,7 +87,7 @@ void print_load_path_plan(const Scene& scene, const std::vector<LoadStage>& stag
   for (const std::int64_t step : scene.output.vtk_steps)
     if (step > total) beyond += (beyond.empty() ? "" : ", ") + std::to_string(step);
   if (!beyond.empty())  // an example's path shortened by --set keeps its snapshot list: warned, not refused
-    std::printf("perinom: warning: output.vtk_steps: load step(s) %s beyond the path's %d: no snapshot there\n",
+    warn("output.vtk_steps: load step(s) %s beyond the path's %d: no snapshot there",
                 beyond.c_str(), total);
   std::printf("  %5s %5s %6s %10s %6s %8s %8s %8s %10s %8s%s\n", "stage", "step", "factor", "iterations",
               "rounds", "flagged", "yielding", "plastic", "residual", "seconds", scene.damage ? "   broken" : "");

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "diagnostics.hpp"
 #include "layer_support_note.hpp"
 #include "thin_body_note.hpp"
 
@@ -16,7 +17,7 @@ std::string locking_warning(const Problem& p) {
   if (place.where.empty()) return "";
   char buf[1280];
   std::snprintf(buf, sizeof buf,
-                "material.nu = %g is nearly incompressible (lambda / mu = %.4g) and the body is %d particles across %s: "
+                "material.nu = %.10g is nearly incompressible (lambda / mu = %.4g) and the body is %d particles across %s: "
                 "model.formulation %s with operator_order %d locks in bending across so few (a plane-strain "
                 "cantilever's tip deflection against FEM at 4 / 8 / 16 particles across, consistent order 2: nu 0.3 "
                 "+4.5 / +2.3 / +0.6%%, nu 0.45 -3.4 / +1.9 / +0.6%%, nu 0.49 -28 / +1.2 / +0.5%%, nu 0.499 -70 / -2.9 / "
@@ -48,12 +49,12 @@ std::string plastic_collapse_note(const Problem& p) {
 }
 
 void print_body_notes(const Problem& p) {
-  if (const std::string thin = thin_body_note(p); !thin.empty()) std::printf("perinom: note: %s\n", thin.c_str());
+  if (const std::string thin = thin_body_note(p); !thin.empty()) note("%s", thin.c_str());
   if (const std::string locking = locking_warning(p); !locking.empty())
-    std::printf("perinom: warning: %s\n", locking.c_str());
+    warn("%s", locking.c_str());
   if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())
-    std::printf("perinom: note: %s\n", plastic.c_str());
-  if (const std::string layer = layer_support_note(p); !layer.empty()) std::printf("perinom: note: %s\n", layer.c_str());
+    note("%s", plastic.c_str());
+  if (const std::string layer = layer_support_note(p); !layer.empty()) note("%s", layer.c_str());
 }
 
 }  // namespace perinom::cli

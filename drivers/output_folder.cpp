@@ -11,6 +11,7 @@
 #include <iterator>
 
 #include "perinom/core/error.hpp"
+#include "diagnostics.hpp"
 
 namespace perinom::cli {
 namespace {
@@ -197,8 +198,8 @@ void RunFolder::announce() const {
   const std::size_t shown = std::min<std::size_t>(foreign_.size(), 5);
   for (std::size_t k = 0; k < shown; ++k) list += (k ? ", " : "") + foreign_[k];
   if (foreign_.size() > shown) list += " and " + std::to_string(foreign_.size() - shown) + " more";
-  std::printf("perinom: warning: --out %s holds %zu file(s) named like perinom's output that no perinom run recorded "
-              "writing there (%s): left in place, and not this run's\n",
+  warn("--out %s holds %zu file(s) named like perinom's output that no perinom run recorded "
+              "writing there (%s): left in place, and not this run's",
               dir_.c_str(), foreign_.size(), list.c_str());
 }
 

@@ -19,6 +19,7 @@
 #include "perinom/solvers/adr.hpp"
 #include "perinom/core/timer.hpp"
 #include "perinom/solvers/newton.hpp"
+#include "diagnostics.hpp"
 #include "difference.hpp"
 #include "damaged_newton_check.hpp"
 #include "load_path_run.hpp"
@@ -144,15 +145,15 @@ int run(const Options& opt) {
     std::printf("perinom: resuming from %s\n", restart->where().c_str());
   }
   if (scene.model.kinematics == "finite_rotation" && has_surface_load(scene))
-    std::printf("perinom: note: model.kinematics finite_rotation: %s\n",
+    note("model.kinematics finite_rotation: %s",
                 scene.model.follower_pressure
                     ? "pressures follow the deformed surface; traction vectors stay dead loads (reference area)"
                     : "tractions and pressures stay nominal (model.follower_pressure: false)");
   print_body_notes(p);
   if (scene.damage && scene.damage->fracture_energy > 0.0)
-    std::printf("perinom: note: damage.fracture_energy: the broken bonds dissipate G_f per unit crack area; a "
+    note("damage.fracture_energy: the broken bonds dissipate G_f per unit crack area; a "
                 "notched beam's peak still moved 5%% over a halving of the spacing at horizon 3.015 dx "
-                "(docs/verification/notched_beam.md): compare two spacings\n");
+                "(docs/verification/notched_beam.md): compare two spacings");
   const Json pins = pin_results(p);
   std::fflush(stdout);
   const bool dynamic = solver_of(scene).dynamic;
@@ -160,8 +161,8 @@ int run(const Options& opt) {
   if (!dynamic) warn_if_unstable(p), free_motion = warn_if_free(p);
   else if (scene.solver.allow_unstable &&
            (scene.model.formulation == "improved" || scene.model.formulation == "strong"))
-    std::fprintf(stderr, "perinom: warning: model.formulation %s in explicit dynamics (solver.allow_unstable): "
-                 "non-symmetric, its energy may grow without bound; the energy-balance guard %s\n",
+    warn("model.formulation %s in explicit dynamics (solver.allow_unstable): "
+                 "non-symmetric, its energy may grow without bound; the energy-balance guard %s",
                  scene.model.formulation.c_str(), scene.solver.energy_check ? "stops the run if it does" : "is off");
 
   io::PvdSeries series(dir, scene.name);
@@ -235,20 +236,20 @@ int run(const Options& opt) {
     f["detached_particles"] = static_cast<long long>(c.detached);
     if (c.spent >= 0) f["softening_bonds_spent"] = static_cast<long long>(c.spent), f["opening_limit"] = c.opening_limit;
     if (c.detached > 0)
-      std::printf("perinom: note: %lld particle(s) lost a family that spans the %s and were detached: they carry no "
-                  "stress and %s (summary.json solver.fracture.detached_particles)\n",
+      note("%lld particle(s) lost a family that spans the %s and were detached: they carry no "
+                  "stress and %s (summary.json solver.fracture.detached_particles)",
                   static_cast<long long>(c.detached), scene.dim == 2 ? "plane" : "space",
                   c.spent >= 0 ? "only their softening bonds hold them" : "move freely");
     if (dynamic) f["time_step_reductions"] = static_cast<long long>(c.step_reductions), f["final_time_step"] = c.final_dt;
     if (c.step_reductions > 0)
-      std::printf("perinom: note: broken bonds lowered the stable time step %lld time(s); the run kept its ratio to "
-                  "it and ended at dt = %.4g s (summary.json solver.fracture.final_time_step)\n",
+      note("broken bonds lowered the stable time step %lld time(s); the run kept its ratio to "
+                  "it and ended at dt = %.4g s (summary.json solver.fracture.final_time_step)",
                   static_cast<long long>(c.step_reductions), c.final_dt);
     if (c.armed_step >= 0) {
       f["armed_step"] = static_cast<long long>(c.armed_step);
       f["hourglass_threshold"] = c.hourglass_threshold;
-      std::printf("perinom: note: the instability criterion armed at step %lld (a bond reached s_max); from then on "
-                  "bonds whose hourglass strain exceeds s_hg_max = %.4g break (summary.json solver.fracture.armed_step)\n",
+      note("the instability criterion armed at step %lld (a bond reached s_max); from then on "
+                  "bonds whose hourglass strain exceeds s_hg_max = %.4g break (summary.json solver.fracture.armed_step)",
                   static_cast<long long>(c.armed_step), c.hourglass_threshold);
     }
     if (dynamic) {  // a load path's cost is in load_steps.csv, step by step
@@ -302,6 +303,7 @@ int run(const Options& opt) {
   memory["peak_bytes"] = peak_resident_bytes();
   summary["memory"] = memory;
   // Last, so a summary.json beside the marker-free folder means the run ended here.
+  add_diagnostics(summary);
   write_json_file(dir + "/summary.json", summary);
 
   if (!final_state_error.empty() && failure.empty()) throw SolveError(final_state_error);

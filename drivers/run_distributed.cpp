@@ -25,6 +25,7 @@
 #include <set>
 
 #include "commands.hpp"
+#include "diagnostics.hpp"
 #include "distributed_output.hpp"
 #include "locking_warning.hpp"
 #include "memory_estimate.hpp"
@@ -284,6 +285,7 @@ int run_distributed(const Options& opt) {
   memory["peak_bytes_per_rank"] = max_over_ranks(double(peak_resident_bytes()));
   memory["peak_bytes_all_ranks"] = sum_over_ranks(double(peak_resident_bytes()));
   summary["memory"] = memory;
+  add_diagnostics(summary);
   if (root) io::write_json_file(dir + "/summary.json", summary);
   barrier();
 

@@ -6,6 +6,7 @@
 
 #include "perinom/core/timer.hpp"
 #include "perinom/io/csv_writer.hpp"
+#include "diagnostics.hpp"
 
 namespace perinom::cli {
 
@@ -41,9 +42,9 @@ void add_energy_balance(const History& h, io::Json& solver) {
   const double relative = scale > 0.0 ? defect / scale : 0.0;
   solver["energy_balance"] = relative;
   if (relative > 0.01)
-    std::printf("perinom: warning: the energy balance ends off by %.3g%% of the largest work or energy (kinetic + "
+    warn("the energy balance ends off by %.3g%% of the largest work or energy (kinetic + "
                 "strain + released - external work; summary.json solver.energy_balance): the dynamics are not "
-                "to be trusted (zero-energy modes without stabilization, or too large a time step)\n",
+                "to be trusted (zero-energy modes without stabilization, or too large a time step)",
                 100.0 * relative);
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "perinom/distributed/ranks.hpp"
+#include "diagnostics.hpp"
 
 namespace perinom::cli {
 namespace {
@@ -54,10 +55,10 @@ void report_small_strain(const Problem& p, const SmallStrainMeasure& m, io::Json
     j["position"] = x;
     summary["largest_displacement_gradient"] = j;
     if (m.value > kSmallGradientLimit)
-      std::printf("perinom: warning: the displacement gradient |grad u| reaches %.3g at particle %zu at (%s) "
+      warn("the displacement gradient |grad u| reaches %.3g at particle %zu at (%s) "
                   "(summary.json largest_displacement_gradient); beyond about %g strains and rotations are not small, "
                   "and a small-strain model's answer is not the body's: check the units of the moduli, loads and "
-                  "lengths%s\n",
+                  "lengths%s",
                   m.value, m.particle, where.c_str(), kSmallGradientLimit,
                   p.scene.plasticity ? " (model.kinematics: finite_rotation follows large rotations)" : "");
     return;
@@ -68,10 +69,10 @@ void report_small_strain(const Problem& p, const SmallStrainMeasure& m, io::Json
   j["position"] = x;
   summary["largest_deflection"] = j;
   if (m.value > kSmallDeflectionLimit * t)
-    std::printf("perinom: warning: the deflection reaches %.3g m at node %zu at (%s), %.3g times the plate's thickness "
+    warn("the deflection reaches %.3g m at node %zu at (%s), %.3g times the plate's thickness "
                 "(summary.json largest_deflection); beyond about %g of it the plate stretches as it bends, which the "
                 "linear plate does not model, and its answer is not the plate's: check the units of the moduli, "
-                "loads and lengths\n",
+                "loads and lengths",
                 m.value, m.particle, where.c_str(), m.value / t, kSmallDeflectionLimit);
 }
 

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "diagnostics.hpp"
+
 namespace perinom::cli {
 
 const Loading& checked_loading(const Problem& p) { return p.stages.empty() ? p.loading : p.stages.front().loading; }
@@ -31,10 +33,9 @@ void warn_if_unstable(Problem& p) {
   const SpectrumOptions options;
   const std::size_t n = free_dofs(p.physics(), loading);
   if (n > options.max_dofs) {
-    std::fprintf(stderr,
-                 "perinom: warning: model.formulation %s: non-symmetric (strong-form rows near the surface) and "
+    warn("model.formulation %s: non-symmetric (strong-form rows near the surface) and "
                  "possibly unstable; the stability check was skipped: %zu free dofs exceed its limit of %zu "
-                 "(perinom check --spectrum on a coarser discretization.dx); use consistent\n",
+                 "(perinom check --spectrum on a coarser discretization.dx); use consistent",
                  name.c_str(), n, options.max_dofs);
     return;
   }
@@ -45,10 +46,9 @@ void warn_if_unstable(Problem& p) {
     std::printf("perinom: stability check: stable (symmetry defect %.2e, %.1f s)\n", r.symmetry_defect, r.seconds);
     return;
   }
-  std::fprintf(stderr,
-               "perinom: warning: model.formulation %s: the discrete problem is unstable (%zu eigenvalues of M^-1 K "
+  warn("model.formulation %s: the discrete problem is unstable (%zu eigenvalues of M^-1 K "
                "with negative real part, %zu complex, growth rate %.3e 1/s; perinom check --spectrum shows them); "
-               "a static answer may be wrong; use consistent\n",
+               "a static answer may be wrong; use consistent",
                name.c_str(), r.negative, r.complex, r.growth_rate);
 }
 

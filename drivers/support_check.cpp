@@ -9,6 +9,7 @@
 #include "perinom/models/correspondence.hpp"
 #include "perinom/models/rigid_body.hpp"
 #include "perinom/models/thin_plate.hpp"
+#include "diagnostics.hpp"
 
 namespace perinom::cli {
 namespace {
@@ -90,10 +91,9 @@ bool check_pieces(const Problem& p, const Pieces& pieces, const Loading& loading
     const Piece piece = piece_of(p.cloud, pieces, c);
     const std::vector<FreeRigidMotion> free = free_rigid_motions(p.cloud, loading, piece.within);
     if (free.empty()) continue;
-    std::fprintf(stderr,
-                 "perinom: warning: %s: the body is in %d pieces that no bond joins, and the supports leave the piece "
+    warn("%s: the body is in %d pieces that no bond joins, and the supports leave the piece "
                  "of %zu particle(s) around %s %zu rigid motion(s) free: it can %s. A static balance needs every "
-                 "piece held (hold more components of that piece)\n",
+                 "piece held (hold more components of that piece)",
                  where.c_str(), static_cast<int>(pieces.count), piece.count, point(piece.centroid, d).c_str(),
                  free.size(), describe(free, d).c_str());
     any = true;
@@ -107,9 +107,8 @@ bool check(const PointCloud& cloud, const ThinPlateModel* plate, const Loading& 
       plate ? free_plate_motions(plate->plate(), loading) : free_rigid_motions(cloud, loading);
   if (free.empty()) return false;
   const std::string text = describe(free, plate ? 3 : cloud.dim);
-  std::fprintf(stderr,
-               "perinom: warning: %s: the supports leave the %s %zu rigid motion(s) free: it can %s. A static "
-               "balance needs every rigid motion held: a load along one%s will not balance (%s)\n",
+  warn("%s: the supports leave the %s %zu rigid motion(s) free: it can %s. A static "
+               "balance needs every rigid motion held: a load along one%s will not balance (%s)",
                where.c_str(), plate ? "plate" : "body", free.size(), text.c_str(),
                plate ? "" : ", or a crack that frees a piece,",
                plate ? "support more edges, or clamp one"
@@ -155,13 +154,13 @@ bool explain_free_pieces(const Problem& p, const History& steps) {
       ++more;
       continue;
     }
-    std::printf("perinom: note: in stage '%s' the cracks have left a piece of %zu particle(s) around %s (of %d "
-                "piece(s), %zu detached particle(s) apart) that its supports do not hold: it can %s\n",
+    note("in stage '%s' the cracks have left a piece of %zu particle(s) around %s (of %d "
+                "piece(s), %zu detached particle(s) apart) that its supports do not hold: it can %s",
                 p.stages[k].name.c_str(), piece.count, point(piece.centroid, d).c_str(), static_cast<int>(pieces.count),
                 G.detached().size(), describe(free, d).c_str());
     ++named;
   }
-  if (more > 0) std::printf("perinom: note: and %d more such piece(s)\n", more);
+  if (more > 0) note("and %d more such piece(s)", more);
   return named > 0;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "perinom/core/timer.hpp"
+#include "diagnostics.hpp"
 
 namespace perinom::cli {
 
@@ -66,7 +67,7 @@ void TerminalProgress::phase(const char* what) {
 }
 
 void TerminalProgress::warn(const char* what) {
-  std::printf("perinom: warning: %s\n", what);
+  cli::warn("%s", what);
   std::fflush(stdout);
 }
 

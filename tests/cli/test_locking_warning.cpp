@@ -24,6 +24,11 @@ TEST_CASE("a nearly incompressible body few particles across gets a locking warn
   INFO(run.out << run.err);
   CHECK(run.exit_code == 0);
   CHECK(run.out.find("perinom: warning: material.nu = 0.499 is nearly incompressible") != std::string::npos);
+  // nu to as many digits as given: 0.4999999999 read "nu = 0.5" (%g), which is refused.
+  std::ofstream(dir.path / "nines.yaml") << with(tiny_scene, "nu: 0.25", "nu: 0.4999999999");
+  const Outcome nines = perinom(dir, "check nines.yaml");
+  INFO(nines.out << nines.err);
+  CHECK(nines.out.find("warning: material.nu = 0.4999999999 is nearly incompressible") != std::string::npos);
   for (const char* quiet : {"stiff.yaml", "stress.yaml", "classical.yaml"}) {
     const Outcome o = perinom(dir, std::string("check ") + quiet);
     INFO(quiet << ": " << o.out << o.err);

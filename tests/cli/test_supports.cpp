@@ -159,7 +159,7 @@ TEST_CASE("a free plate without constraints is singular, and rigid_body refuses 
   CHECK(none.exit_code == 2);
   CHECK(none.err.find("singular") != std::string::npos);
   // The warning before the solve names the motions: a free plane body has three.
-  CHECK(none.err.find("perinom: warning: boundary: the supports leave the body 3 rigid motion(s) free") != std::string::npos);
+  CHECK(none.out.find("perinom: warning: boundary: the supports leave the body 3 rigid motion(s) free") != std::string::npos);
   const Run force = run("unbalanced_force", free_plate, "--set boundary.1.traction=[1.0e6,0.0001e6]");
   CHECK(force.exit_code == 2);
   CHECK(force.err.find("scene.yaml: constraints: the external loads are not balanced") != std::string::npos);
@@ -242,9 +242,9 @@ TEST_CASE("a body in pieces is checked piece by piece, and rigid_body refuses it
   std::ofstream(d / "scene.yaml") << held;
   const std::string cmd = "cd '" + d.string() + "' && '" PERINOM_EXE "' check scene.yaml >out.txt 2>err.txt";
   CHECK(std::system(cmd.c_str()) == 0);
-  const std::string err = slurp(d / "err.txt");
-  INFO(err);
-  CHECK(err.find("the body is in 2 pieces that no bond joins, and the supports leave the piece of 100 particle(s) "
+  const std::string out = slurp(d / "out.txt");
+  INFO(out);
+  CHECK(out.find("the body is in 2 pieces that no bond joins, and the supports leave the piece of 100 particle(s) "
                  "around (0.01, 0.0075) m 1 rigid motion(s) free: it can move along (1, 0)") != std::string::npos);
   fs::remove_all(d);
   const Run r = run("pieces_rigid", with(free_plate, "constraints: rigid_body\n",
