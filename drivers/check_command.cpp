@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "classical_mesh_note.hpp"
 #include "layer_support_note.hpp"
 #include "locking_warning.hpp"
 #include "memory_estimate.hpp"
@@ -96,6 +97,8 @@ int check(const Options& opt) {
   if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())
     std::printf("  collapse        %s\n", plastic.c_str());
   if (const std::string layer = layer_support_note(p); !layer.empty()) std::printf("  supports        %s\n", layer.c_str());
+  if (const std::string classical = classical_mesh_note(p); !classical.empty())
+    std::printf("  formulation     %s\n", classical.c_str());
   if (!scene.solver.type.empty() && scene.solver.type != "verlet") warn_if_free(p);  // as run warns before a static solve
   std::printf("  bonds           %zu (%.1f per particle)\n", p.bonds, double(p.bonds) / p.cloud.size());
   if (scene.body_files.given()) print_body(p);

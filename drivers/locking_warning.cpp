@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "classical_mesh_note.hpp"
 #include "diagnostics.hpp"
 #include "layer_support_note.hpp"
 #include "thin_body_note.hpp"
@@ -55,6 +56,7 @@ void print_body_notes(const Problem& p) {
   if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())
     note("%s", plastic.c_str());
   if (const std::string layer = layer_support_note(p); !layer.empty()) note("%s", layer.c_str());
+  if (const std::string classical = classical_mesh_note(p); !classical.empty()) note("%s", classical.c_str());
 }
 
 }  // namespace perinom::cli
