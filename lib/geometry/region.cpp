@@ -64,6 +64,20 @@ std::string outside_body(const NearestParticle& n, const PointCloud& cloud) {
   return msg.str();
 }
 
+std::string inside_hole(const BoxGeometry& box, const double* point) {
+  for (std::size_t k = 0; k < box.holes.size(); ++k) {
+    Hole inner = box.holes[k];
+    inner.radius *= 1.0 - 1e-6;
+    if (!inner.contains(point, box.dim)) continue;
+    std::ostringstream msg;
+    msg << "lies inside hole " << k << " (centre (";
+    for (int a = 0; a < box.dim; ++a) msg << (a ? ", " : "") << box.holes[k].center[a];
+    msg << "), radius " << box.holes[k].radius << " m)";
+    return msg.str();
+  }
+  return "";
+}
+
 std::vector<ParticleId> select(const Region& region, const BoxGeometry& box,
                                const PointCloud& cloud) {
   std::vector<ParticleId> ids;

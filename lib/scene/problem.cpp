@@ -163,10 +163,13 @@ void check_fracture_energy(const DamageSpec& d, const Scene& s, const Families& 
 
 }  // namespace
 
-BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud) {
+BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud, const BoxGeometry* box) {
   const int d = cloud.dim;
   BoundProbe b{p, {}, {}};
   if (!p.is_line) {
+    if (const std::string hole = box ? inside_hole(*box, p.point.data()) : ""; !hole.empty())
+      throw InputError(p.where + ".point: probe '" + p.name + "' " + hole +
+                       "; a point probe reads the particle nearest its point, here one on the hole's edge");
     const NearestParticle nearest = nearest_particle(cloud, p.point.data());
     const std::string outside = outside_body(nearest, cloud);
     if (!outside.empty())
@@ -303,7 +306,7 @@ Problem build_problem_frame(const Scene& s) {
   p.scene = s;
   const Body body = scene_body(s, p);
   p.facets = body_facets(s, body, p);
-  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
+  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud, &s.geometry));
   BoundaryData data{&body.facets, &p.groups, nullptr};
   FaceOf face_of;
   p.loading = make_loading(s, s.boundary, p.cloud, face_of, data);  // face-located ones uncoupled (rank_loading)
@@ -324,7 +327,7 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   p.bonds = families.bonds();
   if (p.scene.damage && p.scene.damage->G_c > 0.0) derive_critical_stretch(*p.scene.damage, s, families);
   if (p.scene.damage && p.scene.damage->fracture_energy > 0.0) check_fracture_energy(*p.scene.damage, s, families);
-  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud));
+  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud, &s.geometry));
   if (timer) timer->start("operators");
   const CorrespondenceOptions opt = correspondence_options(s);
   Surface surface;

@@ -80,6 +80,9 @@ const FacetGroup& region_group(const BoundarySpec& b, const BoundaryData& bounda
 std::vector<ParticleId> select_region(const Region& region, const Scene& s, const PointCloud& cloud,
                                       const std::string& where) {
   if (region.is_point) {
+    if (const std::string hole = inside_hole(s.geometry, region.point.data()); !hole.empty())
+      throw InputError(where + ".region.point: the point " + hole + "; a point region holds the particle nearest its point, "
+                               "here one on the hole's edge");
     const NearestParticle nearest = nearest_particle(cloud, region.point.data());
     const std::string outside = outside_body(nearest, cloud);
     if (!outside.empty())

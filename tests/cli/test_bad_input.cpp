@@ -139,6 +139,34 @@ TEST_CASE("a point probe outside the body names the probe and the particle it wo
                    "--set probes[0].point=[0.005,0.015]");
 }
 
+namespace {
+
+/// tiny_scene with a hole of radius 1.5 spacings: its centre is within two spacings of the
+/// edge particles, which the check for a point off the body lets pass.
+std::string holed() {
+  return with(tiny_scene, "max: [0.01, 0.01]}", "max: [0.01, 0.01]}\n  holes: [{center: [0.005, 0.005], radius: 0.0015}]");
+}
+
+}  // namespace
+
+TEST_CASE("a point probe inside a small hole is an error, not the edge particle read", "[cli]") {
+  require_rejected(holed(), {"probes[0].point: probe 'top_uy' lies inside hole 0 (centre (0.005, 0.005), radius 0.0015 m)"},
+                   "--set probes[0].point=[0.005,0.005]");
+}
+
+TEST_CASE("a point region inside a small hole is an error, not the edge particle held", "[cli]") {
+  require_rejected(with(holed(), "region: bottom", "region: {point: [0.0051, 0.0049]}"),
+                   {"boundary[0].region.point: the point lies inside hole 0"});
+}
+
+TEST_CASE("a point probe on a hole's edge is on the body", "[cli]") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "edge.yaml") << holed();
+  const Outcome edge = perinom(dir, "check edge.yaml --set probes[0].point=[0.005,0.0065]");
+  INFO(edge.out << edge.err);
+  CHECK(edge.exit_code == 0);
+}
+
 TEST_CASE("a point region outside the body is an error, not the nearest corner held", "[cli]") {
   const std::string s = with(tiny_scene, "region: bottom", "region: {point: [0.005, 0.015]}");
   require_rejected(s, {"boundary[0].region.point: the point is 0.0055", "particle 94 at (0.0045, 0.0095)", "outside the body"});

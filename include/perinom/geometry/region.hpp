@@ -57,6 +57,12 @@ NearestParticle nearest_particle(const PointCloud& cloud, const double* point);
 /// particle N at (x, y)): outside the body or in a hole".
 std::string outside_body(const NearestParticle& nearest, const PointCloud& cloud);
 
+/// A point inside one of the box's holes (deeper than 1e-6 of its radius: a point on the
+/// edge is on the body): "lies inside hole K (centre (...), radius R m)"; empty otherwise. A
+/// small hole's centre is within two spacings of the edge particles, which outside_body lets
+/// pass (a probe at the centre of a hole of radius 1.5 dx read the edge particle, exit 0).
+std::string inside_hole(const BoxGeometry& box, const double* point);
+
 /// Outward unit normal of a side (dim entries).
 std::array<double, 3> outward_normal(const Side& side);
 

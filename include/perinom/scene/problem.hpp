@@ -66,8 +66,9 @@ struct Problem {
   }
 };
 
-/// Binds a probe to the cloud's particles; throws InputError for a line that meets none.
-BoundProbe bind_probe(const ProbeSpec& spec, const PointCloud& cloud);
+/// Binds a probe to the cloud's particles; throws InputError for a line that meets none, a
+/// point off the body, or (given the box) a point inside one of its holes.
+BoundProbe bind_probe(const ProbeSpec& spec, const PointCloud& cloud, const BoxGeometry* box = nullptr);
 
 /// "discretization.horizon.neighbors" or "discretization.horizon.ratio", for messages.
 std::string horizon_key(const Scene& scene);
