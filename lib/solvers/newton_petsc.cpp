@@ -19,6 +19,7 @@
 #include "perinom/core/error.hpp"
 #include "perinom/core/memory.hpp"
 #include "perinom/solvers/newton.hpp"
+#include "perinom/solvers/rounding_force.hpp"
 #include "petsc_partition.hpp"
 #include "petsc_plugin.hpp"
 #include "petsc_ranks.hpp"
@@ -323,6 +324,7 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
   sample.limit = 0;
   sample.load_steps = opt.load_steps;
   std::vector<double> fint(model.dofs());
+  const std::vector<double> row_sums = model.stiffness_row_sums();  // for the rounding floor
   Owned<Vec, VecDestroy> x_start;
   check(VecDuplicate(x.p, &x_start.p), "VecDuplicate");
   for (int step = 1; step <= opt.load_steps; ++step) {
@@ -362,14 +364,16 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
       R += Eigen::Map<const Eigen::VectorXd>(a, R.size());
       check(VecRestoreArrayRead(r.p, &a), "VecRestoreArrayRead");
     }
-    // Squared norms of the residual, the reactions, the applied force and u, over the ranks.
-    double sums[4] = {R.squaredNorm(), 0.0, loading.force_norm(sys.s), sys.u.squaredNorm()};
-    sums[2] *= sums[2];
+    // Squared norms of the residual, the reactions, the applied force, u and the stiffness
+    // force (rounding_force.hpp), over the ranks.
+    double sums[5] = {R.squaredNorm(), 0.0, loading.force_norm(sys.s), sys.u.squaredNorm(),
+                      stiffness_force(row_sums.size(), sys.u.data(), [&row_sums](std::size_t k) { return row_sums[k]; })};
+    sums[2] *= sums[2], sums[4] *= sums[4];
     for (const auto dof : loading.fixed) {
       const double fi = sys.f[static_cast<Eigen::Index>(dof)] + loading.force_at(sys.s, static_cast<std::size_t>(dof));
       sums[1] += fi * fi;
     }
-    model.sum_across_ranks(sums, 4);
+    model.sum_across_ranks(sums, 5);
     const double load = std::sqrt(std::max(sums[2], sums[1]));
     const double relative = load > 0.0 ? std::sqrt(sums[0]) / load : std::sqrt(sums[0]);
     if (!std::isfinite(relative) || !std::isfinite(sums[3])) {
@@ -383,6 +387,9 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
     }
     std::copy(sys.u.data(), sys.u.data() + sys.u.size(), u.begin());
     rep.residual = relative;
+    rep.residual_force = std::sqrt(sums[0]), rep.stiffness_force = std::sqrt(sums[4]);
+    // Loads and reactions that are rounding themselves: as the serial path (newton.cpp).
+    rep.at_rounding_floor = relative > opt.tolerance && rep.residual_force <= rounding_force(rep.stiffness_force);
     rep.history.add({double(step), sys.s, double(iterations), relative, double(linear)});
     if (loading.has_supports()) append_reactions(model, loading, sys.s, u.data(), fint, reactions, rep.history);
     if (progress) {
