@@ -7,6 +7,8 @@
 
 #include "../support/clouds.hpp"
 #include "perinom/fracture/precrack.hpp"
+#include "perinom/geometry/lattice.hpp"
+#include "perinom/geometry/region.hpp"
 #include "perinom/neighbors/bond_graph.hpp"
 #include "perinom/neighbors/search.hpp"
 
@@ -94,4 +96,44 @@ TEST_CASE("a bond ending on the crack line is not cut, and degenerate cracks are
   flat.edge2 = {2.0, 0.0, 0.0};
   const double p[3] = {0.0, 0.0, -1.0}, q[3] = {0.0, 0.0, 1.0};
   CHECK_THROWS_AS(crosses(flat, 3, p, q), std::invalid_argument);
+}
+
+TEST_CASE("mirror notches ending where bonds cross their line cut mirror bonds", "[fracture]") {
+  // Notches that end exactly where bonds between two particle columns cross their line:
+  // Kalthoff-Winkler's (from x = -2.5 mm to 50 mm at y = +-25 mm, dx = 2.5 mm), and SENT's
+  // mirrored about its crack line (from x = -0.01 mm to 0.5 mm at y = 0.5 mm, dx = 0.05 mm).
+  // Rounding cut such bonds at one notch and not at its mirror (Kalthoff's damage 0.07 apart
+  // at the start, 0.86 after the run).
+  struct Case {
+    double x0, x1, y, dx, half_height;
+  };
+  for (const Case k : {Case{-0.0025, 0.05, 0.025, 0.0025, 0.1}, Case{-1e-5, 5e-4, 5e-4, 5e-5, 1e-3}}) {
+    INFO("notch from x = " << k.x0 << " to " << k.x1 << " at y = +-" << k.y);
+    BoxGeometry box;
+    box.dim = 2;
+    box.min = {0.0, -k.half_height, 0.0};
+    box.max = {2.0 * k.x1, k.half_height, 0.0};
+    const PointCloud c = make_lattice(box, k.dx, 0.0, 1);
+    const Families f = radius_families(c, 3.015 * k.dx);
+    Precrack upper, lower;
+    upper.origin = {k.x0, k.y, 0.0}, upper.edge1 = {k.x1 - k.x0, 0.0, 0.0};
+    lower.origin = {k.x0, -k.y, 0.0}, lower.edge1 = {k.x1 - k.x0, 0.0, 0.0};
+    const auto up = bonds_crossing(c, f, {upper}), down = bonds_crossing(c, f, {lower});
+    // Each cut bond of the upper notch, mirrored in y = 0, is a cut bond of the lower one.
+    const auto mirror = [&](ParticleId i) {
+      const double m[2] = {c.x[2 * i], -c.x[2 * i + 1]};
+      return nearest_particle(c, m).id;
+    };
+    std::set<Pair> mirrored, lower_set;
+    for (const auto& [i, j] : up) mirrored.insert({std::min(mirror(i), mirror(j)), std::max(mirror(i), mirror(j))});
+    for (const auto& [i, j] : down) lower_set.insert({std::min(i, j), std::max(i, j)});
+    CHECK(up.size() == down.size());
+    CHECK(mirrored == lower_set);
+    // The bonds through the tip are cut (the end included); those past it are not.
+    const double h = k.dx / 2;
+    const double a[2] = {k.x1 - h, k.y - h}, b[2] = {k.x1 + h, k.y + h};
+    CHECK(crosses(upper, 2, a, b));
+    const double c1[2] = {k.x1 + h, k.y - h}, c2[2] = {k.x1 + 3 * h, k.y + h};
+    CHECK_FALSE(crosses(upper, 2, c1, c2));
+  }
 }
