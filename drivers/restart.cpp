@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <utility>
 
 #include "perinom/core/error.hpp"
 #include "perinom/scene/scene_difference.hpp"
@@ -92,6 +93,19 @@ void Restart::bring_snapshots(const std::string& out) const {
   }
 }
 
+namespace {
+
+/// "geometry.points cloud.csv, geometry.facets f.csv" for the message.
+std::string files_named(const Scene& s) {
+  std::string out;
+  for (const auto& [key, path] : {std::pair<const char*, const std::string*>{"geometry.mesh", &s.body_files.mesh},
+                                  {"geometry.points", &s.body_files.points}, {"geometry.facets", &s.body_files.facets}})
+    if (!path->empty()) out += (out.empty() ? "" : ", ") + std::string(key) + " " + *path;
+  return out;
+}
+
+}  // namespace
+
 void Restart::check(const Problem& p) const {
   const std::int64_t particles = file_.integer("particles"), dofs = file_.integer("dofs");
   if (particles != std::int64_t(p.physics().particles()) || dofs != std::int64_t(p.physics().dofs()))
@@ -102,6 +116,11 @@ void Restart::check(const Problem& p) const {
   if (static_cast<std::uint64_t>(file_.integer("positions")) != positions_fingerprint(p))
     throw InputError("--restart " + dir_ + ": the checkpoint's particles are not where the scene places them "
                      "(has a mesh or point file changed?)");
+  // (Checkpoints written before 2026-12-07 do not have it.)
+  if (file_.has("body_files") && static_cast<std::uint64_t>(file_.integer("body_files")) != body_files_fingerprint(p.scene))
+    throw InputError("--restart " + dir_ + ": the body's files (" + files_named(p.scene) +
+                     ") are not those the checkpoint was written from: volumes, facets or groups changed under the same "
+                     "scene text");
 }
 
 }  // namespace perinom::cli

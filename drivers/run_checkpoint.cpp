@@ -1,6 +1,8 @@
 #include "run_checkpoint.hpp"
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 
 #include "perinom/core/error.hpp"
 #include "perinom/scene/registry.hpp"
@@ -13,6 +15,7 @@ io::Checkpoint run_records(const Problem& p, const RunProgress& run) {
   c.put_integer("particles", static_cast<std::int64_t>(p.physics().particles()));
   c.put_integer("dofs", static_cast<std::int64_t>(p.physics().dofs()));
   c.put_integer("positions", static_cast<std::int64_t>(positions_fingerprint(p)));
+  c.put_integer("body_files", static_cast<std::int64_t>(body_files_fingerprint(p.scene)));
   c.put("solver", checkpoint_solver(p.scene));
   std::vector<double> times;
   std::string files;
@@ -29,6 +32,18 @@ io::Checkpoint run_records(const Problem& p, const RunProgress& run) {
 
 std::uint64_t positions_fingerprint(const Problem& p) {
   return io::fnv1a64(p.cloud.x.data(), p.cloud.x.size() * sizeof(double));
+}
+
+std::uint64_t body_files_fingerprint(const Scene& scene) {
+  const BodyFiles& f = scene.body_files;
+  if (!f.given()) return 0;
+  std::string bytes;
+  for (const std::string* path : {&f.mesh, &f.points, &f.facets}) {
+    if (path->empty()) continue;
+    std::ifstream in(*path, std::ios::binary);
+    bytes += std::string(std::istreambuf_iterator<char>(in), {}) + '\0';
+  }
+  return io::fnv1a64(bytes.data(), bytes.size());
 }
 
 std::string checkpoint_solver(const Scene& scene) {

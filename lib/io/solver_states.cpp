@@ -21,6 +21,7 @@ void put_state(Checkpoint& c, const AdrState& s) {
   c.put_integer("adr.iterations", s.iterations);
   c.put_real("adr.residual", s.residual);
   c.put_real("adr.displacement_change", s.displacement_change);
+  c.put_real("adr.damping", s.damping);
   c.put("adr.u", s.u), c.put("adr.v", s.v), c.put("adr.f", s.f), c.put("adr.f_old", s.f_old);
   c.put("adr.inv_lambda", s.inv_lambda), c.put("adr.history", s.history);
 }
@@ -60,6 +61,7 @@ AdrState adr_state(const Checkpoint& c, std::size_t n) {
   s.iterations = c.integer("adr.iterations");
   s.residual = c.real("adr.residual");
   s.displacement_change = c.real("adr.displacement_change");
+  if (c.has("adr.damping")) s.damping = c.real("adr.damping");  // (checkpoints before 2026-12-07 lack it: 0)
   s.u = c.reals("adr.u", n), s.v = c.reals("adr.v", n), s.f = c.reals("adr.f", n), s.f_old = c.reals("adr.f_old", n);
   s.inv_lambda = c.reals("adr.inv_lambda", n), s.history = c.reals("adr.history");
   return s;

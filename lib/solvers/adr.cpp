@@ -41,12 +41,12 @@ void AdrRelaxation::resume(const AdrState& st) {
       throw std::invalid_argument("AdrRelaxation::resume: a state vector holds " + std::to_string(x->size()) +
                                   " values for " + std::to_string(n) + " dofs");
   inv_lambda_ = st.inv_lambda, v_ = st.v, f_ = st.f, f_old_ = st.f_old;
-  resume_r_ = st.residual, resume_du_ = st.displacement_change;
+  resume_r_ = st.residual, resume_du_ = st.displacement_change, resume_c_ = st.damping;
   resuming_ = true;
 }
 
-AdrState AdrRelaxation::state(const std::vector<double>& u, double r, double du, const SolveReport& rep) const {
-  return {sample_.load_step, rep.iterations, r, du, u, v_, f_, f_old_, inv_lambda_, rep.history.values};
+AdrState AdrRelaxation::state(const std::vector<double>& u, double r, double du, double c, const SolveReport& rep) const {
+  return {sample_.load_step, rep.iterations, r, du, c, u, v_, f_, f_old_, inv_lambda_, rep.history.values};
 }
 
 void AdrRelaxation::add_reactions(const Loading& loading, double s, History& history) {
@@ -77,20 +77,16 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
   const double force_norm = std::sqrt(force_norm2);
   const bool forced = loading.has_force();
 
-  // Residual force F = f_ext(s) - f_int on the free dofs; returns the relative residual and
-  // keeps |F| (N) in `force` (unknown on resuming until the next iteration) and the load it
-  // is relative to in `carried`.
+  // |F| (N) in `force` and the load it is relative to in `carried`, from f and fint_; returns
+  // the relative residual.
   double force = std::numeric_limits<double>::infinity(), carried = 0.0;
   // The stiffest row sum: in equilibrium |u| >= |f_int| / max_k sum_j |K_kj| >= carried / it.
   double stiffest = 0.0;
   for (const double il : inv_lambda) stiffest = std::max(stiffest, 4.0 / il);
   model_.max_across_ranks(&stiffest, 1);
-  auto residual = [&]() {
-    model_.internal_force(u.data(), fint_.data());
+  auto measure = [&]() {
     double reaction2 = 0.0;
     for (const auto dof : loading.fixed) reaction2 += fint_[dof] * fint_[dof];
-    parallel_for(n, [&](std::size_t k) { f[k] = (forced ? loading.force_at(s, k) : 0.0) - fint_[k]; });
-    loading.reduce(f.data());
     const double* fp = f.data();
     double sums[2] = {reaction2, parallel_sums<1>(n, [fp](std::size_t k, double* a) { a[0] += fp[k] * fp[k]; })[0]};
     model_.sum_across_ranks(sums, 2);
@@ -102,6 +98,13 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     const double load = std::max({force_norm, std::sqrt(reaction2), load_floor_});
     force = fnorm, carried = load;
     return load > 0.0 ? fnorm / load : fnorm;
+  };
+  // Residual force F = f_ext(s) - f_int on the free dofs; returns the relative residual.
+  auto residual = [&]() {
+    model_.internal_force(u.data(), fint_.data());
+    parallel_for(n, [&](std::size_t k) { f[k] = (forced ? loading.force_at(s, k) : 0.0) - fint_[k]; });
+    loading.reduce(f.data());
+    return measure();
   };
   // The size of the terms the internal force at u sums (N, over the ranks): its rounding is
   // rounding_force of it.
@@ -119,7 +122,11 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
     // v, f and f_old are the resumed state's, u is where it stopped: the next iteration is
     // the one the interrupted solve would have made (its damping needs f_old).
     resuming_ = false;
-    r = resume_r_, du = resume_du_, first = false;
+    r = resume_r_, du = resume_du_, c = resume_c_, first = false;
+    // The reactions and |F| at u, from the resumed F (not recomputed: F is the interrupted
+    // run's, bit for bit): a solve that stops at once writes its last row from them.
+    model_.internal_force(u.data(), fint_.data());
+    measure();
   } else {
     loading.impose(s, u.data());
     std::fill(v.begin(), v.end(), 0.0);
@@ -214,7 +221,7 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
       sample_.history = &rep.history;
       progress_->update(sample_);
     }
-    if (checkpoints_.due(rep.iterations)) checkpoints_.call(state(u, r, du, rep));
+    if (checkpoints_.due(rep.iterations)) checkpoints_.call(state(u, r, du, c, rep));
   }
   // The last iteration's row, when history_every skipped it: history.csv ends at the state
   // returned.

@@ -69,6 +69,7 @@ struct AdrState {
   std::int64_t iterations = 0;       ///< over all load steps
   double residual = 0.0;             ///< the relative residual at u
   double displacement_change = 0.0;  ///< of the last iteration
+  double damping = 0.0;              ///< of the last iteration (its history row's)
   /// dofs() values each: the displacement (m), the velocity (m per fictitious step), the out-of-
   /// balance force F = f_ext - f_int (N) at u and at the iterate before, the inverse fictitious mass.
   std::vector<double> u, v, f, f_old, inv_lambda;
@@ -115,7 +116,7 @@ class AdrRelaxation {
  private:
   /// Appends the supports' reactions at the last force evaluation to the history's last row.
   void add_reactions(const Loading& loading, double s, History& history);
-  AdrState state(const std::vector<double>& u, double r, double du, const SolveReport& rep) const;
+  AdrState state(const std::vector<double>& u, double r, double du, double c, const SolveReport& rep) const;
   Model& model_;
   AdrOptions opt_;
   Progress* progress_;
@@ -126,7 +127,7 @@ class AdrRelaxation {
   bool by_correction_ = false;
   Checkpoints<AdrState> checkpoints_;
   bool resuming_ = false;
-  double resume_r_ = 0.0, resume_du_ = 0.0;
+  double resume_r_ = 0.0, resume_du_ = 0.0, resume_c_ = 0.0;
 };
 
 /// Solves f_int(u) = s * f_ext with u = s * u_bar on the constrained dofs, for
