@@ -20,6 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using test_support::json_number;
 using test_support::kill_when;
 using test_support::slurp;
 using test_support::start_in_background;
@@ -89,6 +90,22 @@ TEST_CASE("a plastic scene writes its step table, probe histories and plastic fi
   // The step table on stdout names the columns.
   CHECK(slurp(d / "out.txt").find("rounds  flagged yielding") != std::string::npos);
   CHECK(slurp(d / "out.txt").find("follower") == std::string::npos);
+  fs::remove_all(d);
+}
+
+TEST_CASE("plain ADR on a Drucker-Prager path warns that it yields falsely, LBC does not", "[cli][load_path]") {
+  // In 1 + 1 load steps at dx = 6.25 mm the biaxial example's centre read 161 kPa von Mises by
+  // plain ADR against 228 kPa by LBC and Newton (on the yield surface), exit 0 and no word.
+  const fs::path d = fs::temp_directory_path() / "perinom_load_path_plain_adr";
+  const std::string sets = "--set discretization.dx=0.00625 --set stages.0.steps=1 --set stages.1.steps=1";
+  run_biaxial(d, sets + " --set solver.type=adr");
+  const std::string said = "perinom: warning: solver.type adr with material drucker_prager: plain ADR commits";
+  CHECK(slurp(d / "out.txt").find(said) != std::string::npos);
+  CHECK(slurp(d / "out" / "summary.json").find("solver.type adr with material drucker_prager") != std::string::npos);
+  CHECK(json_number(slurp(d / "out" / "summary.json"), "center_von_mises") == Approx(161392).epsilon(1e-3));
+  run_biaxial(d, sets);
+  CHECK(slurp(d / "out.txt").find("plain ADR commits") == std::string::npos);
+  CHECK(json_number(slurp(d / "out" / "summary.json"), "center_von_mises") == Approx(228265).epsilon(1e-4));
   fs::remove_all(d);
 }
 
