@@ -53,6 +53,9 @@ SolveReport solve_scene(Problem& p, const std::string& dir, std::vector<double>&
                         ProbeHistory& probes, std::int64_t& last_snapshot, const Restart* restart) {
   if (restart) {
     series.resume(restart->progress().snapshots);
+    // The series' file now, not at the next snapshot: a path checkpointed at its last step
+    // has none to come, and resumed without NAME.pvd (in place, its own was removed).
+    if (!series.steps().empty()) series.write();
     last_snapshot = restart->progress().last_snapshot;
     probes.rows = restart->progress().probe_rows;
   }

@@ -44,6 +44,8 @@ void put_state(Checkpoint& c, const LoadPathState& s) {
   c.put_integer("load_path.step", s.step);
   c.put_integer("load_path.iterations", s.iterations);
   c.put_real("load_path.residual", s.residual);
+  c.put_real("load_path.residual_force", s.residual_force), c.put_real("load_path.stiffness_force", s.stiffness_force);
+  c.put_integer("load_path.at_rounding_floor", s.at_rounding_floor ? 1 : 0);
   c.put("load_path.u", s.u), c.put("load_path.u_prev", s.u_prev);
   std::vector<double> value0;
   std::vector<std::int64_t> sizes;
@@ -87,6 +89,10 @@ LoadPathState load_path_state(const Checkpoint& c, std::size_t n, std::size_t hi
   s.stage = small(c, "load_path.stage"), s.step = small(c, "load_path.step");
   s.iterations = c.integer("load_path.iterations");
   s.residual = c.real("load_path.residual");
+  if (c.has("load_path.stiffness_force")) {  // (checkpoints before 2026-12-07 lack them)
+    s.residual_force = c.real("load_path.residual_force"), s.stiffness_force = c.real("load_path.stiffness_force");
+    s.at_rounding_floor = c.integer("load_path.at_rounding_floor") != 0;
+  }
   s.u = c.reals("load_path.u", n), s.u_prev = c.reals("load_path.u_prev", n);
   const auto& value0 = c.reals("load_path.stage_value0");
   std::size_t at = 0;

@@ -162,6 +162,8 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
       for (std::size_t at = column; at < rep.history.values.size(); at += width)
         if (rep.history.values[at] > 0.0) ++rep.changes.changing_steps;
     }
+    rep.residual_force = resume->residual_force, rep.stiffness_force = resume->stiffness_force;
+    rep.at_rounding_floor = resume->at_rounding_floor;
     first_stage = std::size_t(resume->stage), first_step = resume->step + 1;
     continuing = first_step <= stages[first_stage].steps;
     if (!continuing) ++first_stage, first_step = 1;

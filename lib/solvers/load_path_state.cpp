@@ -37,6 +37,8 @@ LoadPathState state_after(const Model& model, const std::vector<LoadStage>& stag
                           const std::vector<double>& u, const std::vector<double>& u_prev, const SolveReport& rep) {
   LoadPathState st;
   st.stage = k, st.step = step, st.iterations = rep.iterations, st.residual = rep.residual;
+  st.residual_force = rep.residual_force, st.stiffness_force = rep.stiffness_force;
+  st.at_rounding_floor = rep.at_rounding_floor;
   st.u = u, st.u_prev = u_prev;
   for (int j = 0; j <= k; ++j) st.stage_value0.push_back(stages[j].loading.value0);
   if (const ModelHistory* h = model.history()) {

@@ -226,6 +226,21 @@ TEST_CASE("an LBC load path resumed into another folder ends bit for bit, its ea
   require_same_results(d.path / "reference", d.path / "resumed");
 }
 
+TEST_CASE("an LBC load path checkpointed at its last step resumes to the same files, its .pvd and summary included",
+          "[cli][checkpoint][load_path]") {
+  // Nothing is left to balance: the .pvd used to be written at the next snapshot only (none
+  // came; in place, the old one was removed), and the summary lost the last balance's forces.
+  ScratchDir d;
+  const std::string sets = " --set stages.0.steps=3 --set stages.1.steps=3 --set discretization.dx=0.005"
+                           " --set output.vtk_steps=[2,6]";
+  require_ok(perinom(d, "run " + biaxial + " --out reference" + sets));
+  require_ok(perinom(d, "run " + biaxial + " --out written --set output.checkpoint_every=6" + sets));
+  require_ok(perinom(d, "run " + biaxial + " --restart written --out resumed --set output.checkpoint_every=6" + sets));
+  require_same_results(d.path / "reference", d.path / "resumed");
+  require_ok(perinom(d, "run " + biaxial + " --restart written --set output.checkpoint_every=6" + sets));  // in place
+  require_same_results(d.path / "reference", d.path / "written");
+}
+
 TEST_CASE("a checkpoint of another scene, a damaged one and a folder without one are refused", "[cli][checkpoint]") {
   ScratchDir d;
   std::ofstream(d.path / "scene.yaml") << tiny_scene;

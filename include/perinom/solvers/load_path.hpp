@@ -59,6 +59,10 @@ struct LoadPathState {
   int step = 0;                 ///< that step within the stage (from 1)
   std::int64_t iterations = 0;  ///< ADR iterations over all steps
   double residual = 0.0;        ///< the step's relative residual
+  /// The step's last balance: its residual force and stiffness force (N) and whether it met
+  /// the rounding floor (SolveReport), for a path resumed with no step left to balance.
+  double residual_force = 0.0, stiffness_force = 0.0;
+  bool at_rounding_floor = false;
   /// dofs() values each: u now, and u at the step before (the predictor's base; u at the
   /// stage's start after its first step).
   std::vector<double> u, u_prev;
