@@ -74,23 +74,6 @@ Json probe_results(const Problem& p, const std::vector<double>& u, const std::st
   return out;
 }
 
-/// How far the committed plastic strain has spread: particles yielded, xi's range and mean.
-Json plastic_summary(const ModelHistory& history) {
-  const std::vector<double> xi = history.history_variable();
-  double lo = INFINITY, hi = 0.0, sum = 0.0;
-  std::size_t yielded = 0;
-  for (const double x : xi) {
-    lo = std::min(lo, x), hi = std::max(hi, x), sum += x;
-    yielded += x > 0.0;
-  }
-  Json j = Json::object();
-  j["particles_yielded"] = yielded;
-  j["eq_plastic_strain_min"] = xi.size() ? lo : 0.0;
-  j["eq_plastic_strain_mean"] = xi.size() ? sum / xi.size() : 0.0;
-  j["eq_plastic_strain_max"] = hi;
-  return j;
-}
-
 /// solver.check: newton. Solves again with Newton and reports how far apart the answers are.
 Json newton_check(Problem& p, const std::vector<double>& u) {
   std::vector<double> un;
@@ -292,7 +275,7 @@ int run(const Options& opt) {
                                        : load_path_newton_check(p, u, probe_history);
     timer.start("output");
   }
-  if (const ModelHistory* history = p.physics().history()) summary["plasticity"] = plastic_summary(*history);
+  if (const ModelHistory* history = p.physics().history()) summary["plasticity"] = plastic_summary(p.physics(), *history);
   summary["probes"] = probes;
   timer.stop();
   Json wall = Json::object();

@@ -275,6 +275,7 @@ int run_distributed(const Options& opt) {
                          0.0, rep.at_rounding_floor ? rep.stiffness_force : 0.0);
     check_small_strain_over_ranks(run, u, summary);
   }
+  if (const ModelHistory* history = distributed.history()) summary["plasticity"] = plastic_summary(distributed, *history);
   summary["probes"] = probes;
   timer.stop();
   io::Json wall = io::Json::object();

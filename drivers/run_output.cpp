@@ -10,6 +10,23 @@
 
 namespace perinom::cli {
 
+io::Json plastic_summary(const Model& model, const ModelHistory& history) {
+  const std::vector<double> xi = history.history_variable();  // (a distributed model's: its owned particles')
+  double sums[3] = {0.0, 0.0, double(xi.size())}, extremes[2] = {0.0, -INFINITY};  // max xi, max -xi
+  for (const double x : xi) {
+    sums[0] += x, sums[1] += x > 0.0;
+    extremes[0] = std::max(extremes[0], x), extremes[1] = std::max(extremes[1], -x);
+  }
+  model.sum_across_ranks(sums, 3);
+  model.max_across_ranks(extremes, 2);
+  io::Json j = io::Json::object();
+  j["particles_yielded"] = static_cast<long long>(sums[1]);
+  j["eq_plastic_strain_min"] = sums[2] > 0.0 ? -extremes[1] : 0.0;
+  j["eq_plastic_strain_mean"] = sums[2] > 0.0 ? sums[0] / sums[2] : 0.0;
+  j["eq_plastic_strain_max"] = extremes[0];
+  return j;
+}
+
 void write_history(const std::string& path, const History& h) {
   io::CsvWriter csv(path);
   csv.header(h.columns);

@@ -5,9 +5,15 @@
 
 #include "perinom/core/progress.hpp"
 #include "perinom/io/json_writer.hpp"
+#include "perinom/models/model.hpp"
+#include "perinom/models/model_history.hpp"
 #include "perinom/solvers/history.hpp"
 
 namespace perinom::cli {
+
+/// How far the committed plastic strain has spread: particles yielded, xi's range and mean,
+/// over the ranks of a distributed model (summary.json `plasticity`).
+io::Json plastic_summary(const Model& model, const ModelHistory& history);
 
 /// The history as CSV, one row per recorded iteration or step.
 void write_history(const std::string& path, const History& h);

@@ -83,6 +83,18 @@ def main():
             same_table("probe " + name, os.path.join(serial, value["file"]), os.path.join(ranked, value["file"]))
         else:
             close("probe " + name, value, m["probes"][name], max(abs(value), 1e-300))
+    # A plastic run's summary: the same particles yielded, the plastic strain's range and mean
+    # (it was missing under mpirun).
+    if "plasticity" in s:
+        if "plasticity" not in m:
+            failures.append("plasticity: in the serial summary, not in the ranks'")
+        else:
+            ps, pm = s["plasticity"], m["plasticity"]
+            if ps["particles_yielded"] != pm["particles_yielded"]:
+                failures.append("plasticity: %d particles yielded serial, %d on the ranks"
+                                % (ps["particles_yielded"], pm["particles_yielded"]))
+            for key in ("eq_plastic_strain_min", "eq_plastic_strain_mean", "eq_plastic_strain_max"):
+                close("plasticity " + key, ps[key], pm[key], max(ps["eq_plastic_strain_max"], 1e-300))
     # Reactions against the largest, or the loads' scale when they are all rounding (a free
     # body pinned by rigid_body); the pins themselves must be the same particles.
     if s.get("constraints") != m.get("constraints"):
