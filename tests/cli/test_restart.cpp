@@ -95,19 +95,26 @@ TEST_CASE("ADR resumed from a checkpoint copied aside part-way ends bit for bit 
   const std::string sets = " --set output.csv=true --set solver.tolerance=1e-10 --set solver.displacement_tolerance=1e-10";
   require_ok(perinom(d, "run scene.yaml --out reference" + sets));
   const long n = number_after(slurp(d.path / "reference" / "summary.json"), "iterations");
-  const long k = n / 2 + 1;  // the only checkpoint: part-way
   REQUIRE(n > 100);
-  require_ok(perinom(d, "run scene.yaml --out written --set output.checkpoint_every=" + std::to_string(k) + sets));
-  require_same_results(d.path / "reference", d.path / "written");  // writing checkpoints changes nothing
-  // The run interrupted after the checkpoint: a folder with only it, resumed in place.
-  fs::create_directories(d.path / "resumed");
-  fs::copy_file(d.path / "written" / "checkpoint.bin", d.path / "resumed" / "checkpoint.bin");
-  const Outcome o = perinom(d, "run scene.yaml --restart resumed" + sets);
-  require_ok(o);
-  const std::string from = "resumed/checkpoint.bin (iteration " + std::to_string(k) + ")";
-  CHECK(o.out.find("perinom: resuming from " + from) != std::string::npos);
-  CHECK(slurp(d.path / "resumed" / "summary.json").find("\"restarted_from\": \"" + from + "\"") != std::string::npos);
-  require_same_results(d.path / "reference", d.path / "resumed");
+  REQUIRE(n % 10 != 0);  // (history_every 10: the last row is the one added at the end)
+  // The only checkpoint part-way, and at the iteration it converges on: that resumed run stops
+  // at once, its last history row (damping, reactions) and the summary's residual force from
+  // the checkpoint's state (they read 0, 0, 0 and null).
+  for (const long k : {n / 2 + 1, n}) {
+    INFO("checkpoint at iteration " << k << " of " << n);
+    const std::string written = "written" + std::to_string(k), resumed = "resumed" + std::to_string(k);
+    require_ok(perinom(d, "run scene.yaml --out " + written + " --set output.checkpoint_every=" + std::to_string(k) + sets));
+    require_same_results(d.path / "reference", d.path / written);  // writing checkpoints changes nothing
+    // The run interrupted after the checkpoint: a folder with only it, resumed in place.
+    fs::create_directories(d.path / resumed);
+    fs::copy_file(d.path / written / "checkpoint.bin", d.path / resumed / "checkpoint.bin");
+    const Outcome o = perinom(d, "run scene.yaml --restart " + resumed + sets);
+    require_ok(o);
+    const std::string from = resumed + "/checkpoint.bin (iteration " + std::to_string(k) + ")";
+    CHECK(o.out.find("perinom: resuming from " + from) != std::string::npos);
+    CHECK(slurp(d.path / resumed / "summary.json").find("\"restarted_from\": \"" + from + "\"") != std::string::npos);
+    require_same_results(d.path / "reference", d.path / resumed);
+  }
 }
 
 TEST_CASE("Verlet resumed in place, in a folder the killed run went on writing, ends bit for bit", "[cli][checkpoint]") {
@@ -304,22 +311,6 @@ output: {checkpoint_every: 5}
   write_cloud(0.0, 1.2e-6);
   require_one_clear_error(perinom(d, "run scene.yaml --restart written --out heavier"),
                           {"--restart written: the body's files (geometry.points ", "cloud.csv) are not those the checkpoint"});
-}
-
-TEST_CASE("ADR checkpointed at the iteration it converges on resumes to the same files", "[cli][checkpoint]") {
-  // The resumed run stops at once: its last history row (damping, reactions) and the summary's
-  // residual force come from the checkpoint's state (the row read 0, 0, 0 and the force null).
-  ScratchDir d;
-  std::ofstream(d.path / "scene.yaml") << tiny_scene;
-  const std::string sets = " --set solver.tolerance=1e-10 --set solver.displacement_tolerance=1e-10";
-  require_ok(perinom(d, "run scene.yaml --out reference" + sets));
-  const long n = number_after(slurp(d.path / "reference" / "summary.json"), "iterations");
-  REQUIRE(n % 10 != 0);  // (history_every 10: the last row is the one added at the end)
-  require_ok(perinom(d, "run scene.yaml --out written --set output.checkpoint_every=" + std::to_string(n) + sets));
-  fs::create_directories(d.path / "resumed");
-  fs::copy_file(d.path / "written" / "checkpoint.bin", d.path / "resumed" / "checkpoint.bin");
-  require_ok(perinom(d, "run scene.yaml --restart resumed" + sets));
-  require_same_results(d.path / "reference", d.path / "resumed");
 }
 
 TEST_CASE("Newton solves are not checkpointed, and say so", "[cli][checkpoint]") {
