@@ -9,13 +9,15 @@
 
 namespace perinom::cli {
 
-io::Checkpoint run_records(const Problem& p, const RunProgress& run) {
+RunIdentity run_identity(const Problem& p) { return {positions_fingerprint(p), body_files_fingerprint(p.scene)}; }
+
+io::Checkpoint run_records(const Problem& p, const RunIdentity& id, const RunProgress& run) {
   io::Checkpoint c;
   c.put("scene", p.scene.canonical);
   c.put_integer("particles", static_cast<std::int64_t>(p.physics().particles()));
   c.put_integer("dofs", static_cast<std::int64_t>(p.physics().dofs()));
-  c.put_integer("positions", static_cast<std::int64_t>(positions_fingerprint(p)));
-  c.put_integer("body_files", static_cast<std::int64_t>(body_files_fingerprint(p.scene)));
+  c.put_integer("positions", static_cast<std::int64_t>(id.positions));
+  c.put_integer("body_files", static_cast<std::int64_t>(id.body_files));
   c.put("solver", checkpoint_solver(p.scene));
   std::vector<double> times;
   std::string files;

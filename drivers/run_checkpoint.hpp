@@ -47,12 +47,21 @@ std::uint64_t body_files_fingerprint(const Scene& scene);
 /// "adr", "verlet" or "load_path": the solver state a scene's checkpoints hold.
 std::string checkpoint_solver(const Scene& scene);
 
+/// The two fingerprints above, taken once when the run starts: every checkpoint of the run
+/// records the files the run was built from, not the files as they are when it is due (a
+/// file edited during the run would else resume as if the run had used it; and a mesh is
+/// not reread at every checkpoint).
+struct RunIdentity {
+  std::uint64_t positions = 0, body_files = 0;
+};
+RunIdentity run_identity(const Problem& p);
+
 /// What the checkpoint was written for and the run's progress (the records above).
-io::Checkpoint run_records(const Problem& p, const RunProgress& run);
+io::Checkpoint run_records(const Problem& p, const RunIdentity& id, const RunProgress& run);
 /// Those and the solver's state.
 template <class State>
-io::Checkpoint checkpoint_records(const Problem& p, const RunProgress& run, const State& s) {
-  io::Checkpoint c = run_records(p, run);
+io::Checkpoint checkpoint_records(const Problem& p, const RunIdentity& id, const RunProgress& run, const State& s) {
+  io::Checkpoint c = run_records(p, id, run);
   io::put_state(c, s);
   return c;
 }
@@ -64,9 +73,10 @@ RunProgress run_progress(const io::Checkpoint& c);
 /// The hook that writes dir/checkpoint.bin every output.checkpoint_every iterations, steps
 /// or load steps, with the run's progress as `progress` tells it then.
 template <class State>
-Checkpoints<State> checkpoint_writer(const std::string& dir, const Problem& p, std::function<RunProgress()> progress) {
-  return {p.scene.output.checkpoint_every, [dir, &p, progress](const State& s) {
-            io::write_checkpoint(dir + "/" + checkpoint_name, checkpoint_records(p, progress(), s));
+Checkpoints<State> checkpoint_writer(const std::string& dir, const Problem& p, const RunIdentity& id,
+                                     std::function<RunProgress()> progress) {
+  return {p.scene.output.checkpoint_every, [dir, &p, id, progress](const State& s) {
+            io::write_checkpoint(dir + "/" + checkpoint_name, checkpoint_records(p, id, progress(), s));
           }};
 }
 

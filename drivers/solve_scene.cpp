@@ -18,12 +18,14 @@ SolveReport solve(Problem& p, const std::string& dir, std::vector<double>& u, io
   const std::size_t dofs = p.physics().dofs();
   // What a checkpoint holds beside the solver's state, as it is when the checkpoint is due.
   const auto progress_now = [&] { return RunProgress{series.steps(), last_snapshot, probes.rows}; };
+  // (Read only where checkpoints are written: a mesh is hashed whole.)
+  const RunIdentity id = scene.output.checkpoint_every > 0 ? run_identity(p) : RunIdentity{};
   if (scene.load_path()) {
     const ModelHistory* history = p.physics().history();
     const std::size_t history_values = history ? history->values_per_particle() : 0;
     const LoadPathState state = restart ? io::load_path_state(restart->checkpoint(), dofs, history_values) : LoadPathState{};
     return run_load_path(p, dir, u, series, probes, last_snapshot,
-                         checkpoint_writer<LoadPathState>(dir, p, progress_now), restart ? &state : nullptr);
+                         checkpoint_writer<LoadPathState>(dir, p, id, progress_now), restart ? &state : nullptr);
   }
   // ADR snapshots are stamped with the iteration, Verlet snapshots with the time (s).
   const bool dynamic = solver_of(scene).dynamic;
@@ -35,8 +37,8 @@ SolveReport solve(Problem& p, const std::string& dir, std::vector<double>& u, io
                      add_snapshot(series, dynamic ? t : double(it), p, state, dir);
                      last_snapshot = it;
                    }};
-  hooks.adr_checkpoints = checkpoint_writer<AdrState>(dir, p, progress_now);
-  hooks.verlet_checkpoints = checkpoint_writer<VerletState>(dir, p, progress_now);
+  hooks.adr_checkpoints = checkpoint_writer<AdrState>(dir, p, id, progress_now);
+  hooks.verlet_checkpoints = checkpoint_writer<VerletState>(dir, p, id, progress_now);
   // The resumed state of the checkpoint's solver (Restart checked it is the scene's).
   std::optional<AdrState> adr;
   std::optional<VerletState> verlet;
