@@ -70,8 +70,15 @@ std::set<std::string> Restart::files() const {
       throw InputError("--restart " + dir_ + ": the checkpoint lists the snapshot " + s.file +
                        ", which the folder does not hold");
     out.insert(s.file);
+    // Its .csv where the run wrote one (output.csv), or where one is there (a checkpoint
+    // from before snapshot_csv was recorded): a resumed run without it ended with exit 0
+    // and a folder short of the files the user asked for.
     const std::string csv = s.file.substr(0, s.file.rfind('.')) + ".csv";
-    if (fs::is_regular_file(dir_ + "/" + csv)) out.insert(csv);
+    const bool there = fs::is_regular_file(dir_ + "/" + csv);
+    if (progress_.snapshot_csv && !there)
+      throw InputError("--restart " + dir_ + ": the checkpoint lists the snapshot " + s.file +
+                       ", whose point data the run also wrote as " + csv + " (output.csv), which the folder does not hold");
+    if (there) out.insert(csv);
   }
   return out;
 }

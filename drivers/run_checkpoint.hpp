@@ -4,7 +4,8 @@
 // io/checkpoint.hpp; resuming a run from one is restart.hpp.
 //   what it was written for: scene (Scene::canonical), particles, dofs, positions (a
 //     fingerprint of the particles' reference positions), solver (adr, verlet or load_path)
-//   the run's progress: snapshot_times, snapshot_files (one name a line), last_snapshot,
+//   the run's progress: snapshot_times, snapshot_files (one name a line), snapshot_csv (1
+//     where each snapshot has its .csv beside it: output.csv), last_snapshot,
 //     probe_rows with probe_columns (a load path's point-probe histories)
 //   the solver's state (io/solver_states.hpp: every field of AdrState, VerletState or
 //     LoadPathState under its name, prefixed adr., verlet. or load_path.)
@@ -32,6 +33,9 @@ struct RunProgress {
   std::vector<io::PvdSeries::Step> snapshots;
   std::int64_t last_snapshot = -1;
   std::vector<std::vector<double>> probe_rows;
+  /// Read back: each snapshot has its .csv (output.csv; false in checkpoints before
+  /// 2026-12-07). Written from the scene's output.csv.
+  bool snapshot_csv = false;
 };
 
 /// FNV-1a 64 of the particles' reference positions (their bytes): a mesh or point file

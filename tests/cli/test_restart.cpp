@@ -248,6 +248,32 @@ TEST_CASE("an LBC load path checkpointed at its last step resumes to the same fi
   require_same_results(d.path / "reference", d.path / "written");
 }
 
+TEST_CASE("a checkpoint whose snapshots' files are gone from its folder is refused, naming the file", "[cli][checkpoint][load_path]") {
+  // A snapshot's .csv (output.csv) deleted from the folder: the resumed run ended with exit 0
+  // and a folder without it. Its .vtu was refused already.
+  ScratchDir d;
+  const std::string sets = " --set stages.0.steps=3 --set stages.1.steps=3 --set discretization.dx=0.005"
+                           " --set output.vtk_every=1 --set output.csv=true --set output.checkpoint_every=4";
+  require_ok(perinom(d, "run " + biaxial + " --out written" + sets));
+  std::string vtu;  // a snapshot the checkpoint lists (of load step 1)
+  for (const auto& e : fs::directory_iterator(d.path / "written"))
+    if (e.path().extension() == ".vtu" && (vtu.empty() || e.path().filename().string() < vtu)) vtu = e.path().filename().string();
+  REQUIRE(!vtu.empty());
+  const std::string csv = vtu.substr(0, vtu.size() - 4) + ".csv";
+  REQUIRE(fs::exists(d.path / "written" / csv));
+  SECTION("its .csv") {
+    fs::remove(d.path / "written" / csv);
+    require_one_clear_error(perinom(d, "run " + biaxial + " --restart written --out resumed" + sets),
+                            {"--restart written:", "also wrote as " + csv, "which the folder does not hold"});
+  }
+  SECTION("its .vtu") {
+    fs::remove(d.path / "written" / vtu);
+    require_one_clear_error(perinom(d, "run " + biaxial + " --restart written --out resumed" + sets),
+                            {"--restart written:", "the snapshot " + vtu + ", which the folder does not hold"});
+  }
+  SECTION("both there: resumed") { require_ok(perinom(d, "run " + biaxial + " --restart written --out resumed" + sets)); }
+}
+
 TEST_CASE("a checkpoint of another scene, a damaged one and a folder without one are refused", "[cli][checkpoint]") {
   ScratchDir d;
   std::ofstream(d.path / "scene.yaml") << tiny_scene;
