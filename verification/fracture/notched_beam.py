@@ -36,6 +36,9 @@ STEPS, TOTAL = 1500, 1.5e-4  # load steps, load-point displacement (m)
 SPACINGS = [0.0025, 0.0025 / 1.4, 0.00125]
 SOFT_FINEST = 0.00125 / 1.4  # the softening bonds go one spacing further (about 7 min)
 RATIO = 3.015  # the horizon over dx, as in the example
+# Measured by hand (the same runs with 1,800 steps of 0.05 um), quoted in the report:
+LOAD_STEP_NOTE = ("The load step is not what moves it (by hand, 2026-12-07: 0.05 um steps give 1.4128 and "
+                  "1.3816 kN at 2.5 and 1.786 mm against 1.4122 and 1.3816 with the table's 0.1 um). ")
 SOFT_STEPS, SOFT_TOTAL = 900, 0.9e-4  # the softening runs: the same 0.1 um steps, past the peak
 NOTCH_X, NOTCH_TIP, THICKNESS = 0.0875, 0.025, 0.05  # m
 GROWN, G_F = 0.015, 143.2  # the crack growth the energy is read at (m); Gregoire's G_f (N/m)
@@ -162,6 +165,7 @@ def soft_report(soft, plain, plain_moved):
                      f"{(r['peak'] - ref['peak']) / ref['peak'] * 100:+.1f}% |")
     peaks = [r["peak"] for r in three]
     spread = (max(peaks) - min(peaks)) / min(peaks) * 100
+    hi, lo = max(three, key=lambda r: r["peak"]), min(three, key=lambda r: r["peak"])
     held = [r["peak"] for r in same]
     held_spread = (max(held) - min(held)) / min(held) * 100
     fem, fem_curves = cohesive_reference()
@@ -190,10 +194,12 @@ def soft_report(soft, plain, plain_moved):
               f"criterion's {plain_moved:.0f}%); one spacing further, {m3[-1]['dx'] * 1e3:.3f} mm, "
               f"{m3[-1]['peak'] / 1e3:.3f} kN ({last:+.1f}% from the one before). Against the FEM's limit: {vs_fem}. "
               + ("The issue's 5% is met. " if spread <= 5.0 else
-                 f"The issue asks for 5%: missed by {spread - 5.0:.2f} points, the coarsest spacing's error (its "
-                 "horizon is 0.3 of the ligament). ")
-              + "The load step is not what moves it (by hand, 2026-12-05: 0.05 um steps give 1.4050 and 1.3817 kN "
-              "at 2.5 and 1.786 mm against the table's 1.4057 and 1.3816). "
+                 f"The issue asks for 5%: **missed** by {spread - 5.0:.2f} points, between the highest peak "
+                 f"(dx = {hi['dx'] * 1e3:.3f} mm, {(hi['peak'] - fem['bonds']) / fem['bonds'] * 100:+.1f}% from the "
+                 f"FEM) and the lowest (dx = {lo['dx'] * 1e3:.3f} mm, "
+                 f"{(lo['peak'] - fem['bonds']) / fem['bonds'] * 100:+.1f}%): the peaks straddle the limit rather "
+                 "than approach it monotonically. ")
+              + LOAD_STEP_NOTE
               + f"With the horizon held at 7.54 mm the three spacings' peaks spread by {held_spread:.1f}% ("
               + ", ".join(f"{r['peak'] / 1e3:.3f}" for r in same) + " kN at m = "
               + ", ".join(f"{r['ratio']:.2f}" for r in same) + " horizons per spacing, "
