@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include "perinom/core/error.hpp"
+
 namespace perinom {
 struct PointCloud;
 }
@@ -31,6 +33,16 @@ struct Options {
   bool spectrum = false;          ///< check: also the stability check (eigenvalues of M^-1 K)
   int ranks = 0;                  ///< check: report a partition into this many ranks (0: none)
   bool check = false;             ///< bench force: the distributed force against the serial one
+};
+
+/// Bad input every MPI rank met alike (a refusal before the ranks start; reading the scene
+/// or building the whole cloud, which every rank does on the same files): printed once, by
+/// rank `rank` == 0, and every rank ends with exit code 2 on its own, without MPI_Abort
+/// (its banner, and the message once per rank, buried the one line that mattered).
+class InputErrorOnEveryRank : public InputError {
+ public:
+  InputErrorOnEveryRank(const std::string& what, long rank) : InputError(what), rank(rank) {}
+  long rank;
 };
 
 int run(const Options& opt);

@@ -94,6 +94,23 @@ void require_distributed(const Scene& s, const Options& opt) {
   if (s.output.checkpoint_every > 0) refuse("output.checkpoint_every", "a checkpoint");
 }
 
+/// `phase()`, which every rank runs alike on the same input (reading the scene, building the
+/// whole cloud). Its InputError is then every rank's: reported once (InputErrorOnEveryRank).
+/// Met by some ranks only (their files differ), it is theirs, and ends every rank.
+template <class Phase>
+auto alike_on_ranks(const Ranks& world, Phase phase) {
+  std::optional<decltype(phase())> result;
+  std::string error;
+  try {
+    result.emplace(phase());
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  if (sum_over_ranks(error.empty() ? 0.0 : 1.0) == double(world.size)) throw InputErrorOnEveryRank(error, world.rank);
+  if (!error.empty()) throw InputError(error);
+  return std::move(*result);
+}
+
 }  // namespace
 
 int run_distributed(const Options& opt) {
@@ -104,8 +121,11 @@ int run_distributed(const Options& opt) {
   if (!root && !std::freopen("/dev/null", "w", stdout)) throw InputError("cannot silence rank " + std::to_string(world.rank));
   PhaseTimer timer;
   timer.start("read scene");
-  Scene scene = read_scene(opt.positional[0], opt.overrides);
-  require_distributed(scene, opt);
+  Scene scene = alike_on_ranks(world, [&] {
+    Scene s = read_scene(opt.positional[0], opt.overrides);
+    require_distributed(s, opt);
+    return s;
+  });
   const std::string serial = scene.solver.linear_solver;
   if ((scene.solver.type == "newton" || scene.solver.check == "newton") && (serial == "klu" || serial == "umfpack")) {
     // KLU and UMFPACK factor on one process; MUMPS is the direct solver over the ranks (the
@@ -129,8 +149,9 @@ int run_distributed(const Options& opt) {
   timer.start("discretization");
   const bool thin_plate = scene.model.type == "thin_plate";
   std::optional<PlateFrame> plate;  // a thin plate's whole plate (its physical nodes are the frame's cloud)
-  if (thin_plate) plate.emplace(plate_frame(scene));
-  const Problem frame = thin_plate ? std::move(plate->problem) : build_problem_frame(scene);  // plate->problem is spent
+  if (thin_plate) plate.emplace(alike_on_ranks(world, [&] { return plate_frame(scene); }));
+  // (plate->problem is spent)
+  const Problem frame = thin_plate ? std::move(plate->problem) : alike_on_ranks(world, [&] { return build_problem_frame(scene); });
   if (root) print_body_notes(frame);
   const int d = frame.cloud.dim;
   // k-nearest families are searched on the whole cloud (the part's own search could break

@@ -22,6 +22,12 @@ long mpirun_processes() {
   return 1;
 }
 
+long mpirun_rank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK"})
+    if (const char* v = std::getenv(name)) return std::strtol(v, nullptr, 10);
+  return 0;
+}
+
 Ranks mpi_ranks() {
   Ranks r;
   if (const detail::PetscPlugin* p = distributed()) p->world(&r.rank, &r.size);

@@ -11,6 +11,8 @@ namespace perinom {
 /// The number of processes mpirun started, from its environment (1 without mpirun); reading
 /// it starts nothing.
 long mpirun_processes();
+/// This process's rank as mpirun's environment gives it (0 without mpirun); starts nothing.
+long mpirun_rank();
 
 struct Ranks {
   int rank = 0, size = 1;
