@@ -28,6 +28,7 @@
 #include "diagnostics.hpp"
 #include "distributed_output.hpp"
 #include "locking_warning.hpp"
+#include "support_check.hpp"
 #include "memory_estimate.hpp"
 #include "output_folder.hpp"
 #include "perinom/core/error.hpp"
@@ -153,6 +154,9 @@ int run_distributed(const Options& opt) {
   // (plate->problem is spent)
   const Problem frame = thin_plate ? std::move(plate->problem) : alike_on_ranks(world, [&] { return build_problem_frame(scene); });
   if (root) print_body_notes(frame);
+  // The supports' free rigid motions, before a static solve, as serially (run_command.cpp):
+  // on 2 ranks the run said nothing, and a load along one ended NOT converged with no reason.
+  if (root && scene.solver.type != "verlet") warn_if_free_frame(frame, thin_plate ? &plate->plate : nullptr);
   const int d = frame.cloud.dim;
   // k-nearest families are searched on the whole cloud (the part's own search could break
   // the ties at the k-th distance otherwise), and the part reaches their largest support.

@@ -102,9 +102,9 @@ bool check_pieces(const Problem& p, const Pieces& pieces, const Loading& loading
 }
 
 /// Warns of the free motions of the body (a plate's when `plate` is set), saying where.
-bool check(const PointCloud& cloud, const ThinPlateModel* plate, const Loading& loading, const std::string& where) {
+bool check(const PointCloud& cloud, const PlateCloud* plate, const Loading& loading, const std::string& where) {
   const std::vector<FreeRigidMotion> free =
-      plate ? free_plate_motions(plate->plate(), loading) : free_rigid_motions(cloud, loading);
+      plate ? free_plate_motions(*plate, loading) : free_rigid_motions(cloud, loading);
   if (free.empty()) return false;
   const std::string text = describe(free, plate ? 3 : cloud.dim);
   warn("%s: the supports leave the %s %zu rigid motion(s) free: it can %s. A static "
@@ -116,19 +116,31 @@ bool check(const PointCloud& cloud, const ThinPlateModel* plate, const Loading& 
   return true;
 }
 
-}  // namespace
-
-bool warn_if_free(const Problem& p) {
-  const auto* plate = dynamic_cast<const ThinPlateModel*>(p.model.get());
-  if (!plate && p.physics().dofs_per_particle() != p.cloud.dim) return false;
-  const Pieces pieces = plate ? Pieces{} : intact_pieces(p);
-  auto one = [&](const Loading& loading, const std::string& where) {
-    return pieces.count > 1 ? check_pieces(p, pieces, loading, where) : check(p.cloud, plate, loading, where);
-  };
+/// `one(loading, where)` for each loading of the run (each stage's, or the scene's).
+template <class One>
+bool each_loading(const Problem& p, One one) {
   if (p.stages.empty()) return one(p.loading, "boundary");
   bool any = false;
   for (const LoadStage& st : p.stages) any = one(st.loading, "stage '" + st.name + "'") || any;
   return any;
+}
+
+}  // namespace
+
+bool warn_if_free(const Problem& p) {
+  const auto* model = dynamic_cast<const ThinPlateModel*>(p.model.get());
+  if (!model && p.physics().dofs_per_particle() != p.cloud.dim) return false;
+  const PlateCloud* plate = model ? &model->plate() : nullptr;
+  const Pieces pieces = plate ? Pieces{} : intact_pieces(p);
+  return each_loading(p, [&](const Loading& loading, const std::string& where) {
+    return pieces.count > 1 ? check_pieces(p, pieces, loading, where) : check(p.cloud, plate, loading, where);
+  });
+}
+
+bool warn_if_free_frame(const Problem& frame, const PlateCloud* plate) {
+  return each_loading(frame, [&](const Loading& loading, const std::string& where) {
+    return check(frame.cloud, plate, loading, where);
+  });
 }
 
 bool explain_free_pieces(const Problem& p, const History& steps) {
