@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
   cli::Options opt;
   opt.command = args[0];
   const PetscEnd petsc_end;
+  bool dispatched = false;  // before a command runs, every MPI rank reads the same options alike
   try {
     // Only run and the force benchmark are distributed so far (issue 19): any other command
     // under mpirun would do the whole work on every rank and write the same files.
@@ -132,6 +133,7 @@ int main(int argc, char** argv) {
     }
     if (opt.threads > 0) omp_set_num_threads(opt.threads);
     else if (omp_get_max_threads() > cli::max_threads) omp_set_num_threads(cli::max_threads);
+    dispatched = true;
     if (opt.command == "run") return mpirun_processes() > 1 ? cli::run_distributed(opt) : cli::run(opt);
     if (opt.command == "check") return cli::check(opt);
     if (opt.command == "bench") return cli::bench(opt);
@@ -142,6 +144,10 @@ int main(int argc, char** argv) {
     if (e.rank == 0) std::fprintf(stderr, "perinom: error: %s\n", e.what());
     return 2;
   } catch (const InputError& e) {
+    if (!dispatched && mpirun_processes() > 1) {  // a bad option: every rank's alike, said once
+      if (mpirun_rank() == 0) std::fprintf(stderr, "perinom: error: %s\n", e.what());
+      return 2;
+    }
     std::fprintf(stderr, "perinom: error: %s\n", e.what());
     return failed(2);
   } catch (const SolveError& e) {
