@@ -75,9 +75,14 @@ std::vector<BoundarySpec> read_boundary(const std::vector<YAML::Node>& items, co
       b.key.replace(at, 1, ".");
     for (std::size_t at = b.key.find(']'); at != std::string::npos; at = b.key.find(']')) b.key.erase(at, 1);
     b.region = read_region(f, s);
+    // (An empty list held nothing and was still reported as a support; a component twice
+    // is a typo for another.)
+    const std::string components = "x, y" + std::string(s.dim == 3 ? ", z" : "");
+    if (f.has("fix") && f.list("fix").empty()) f.fail("fix", "names no component: give some of " + components + ", or leave fix out");
     for (const auto& c : f.list("fix")) {
       const int a = c.IsScalar() ? axis_of(c.as<std::string>(), s.dim) : -1;
-      if (a < 0) f.fail("fix", "components must be among x, y" + std::string(s.dim == 3 ? ", z" : ""));
+      if (a < 0) f.fail("fix", "components must be among " + components);
+      if (b.fix[a]) f.fail("fix", "names " + c.as<std::string>() + " twice");
       b.fix[a] = true;
     }
     for (const char* key : {"displacement", "velocity"}) {

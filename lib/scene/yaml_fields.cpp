@@ -1,7 +1,9 @@
 #include "yaml_fields.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include "perinom/core/error.hpp"
@@ -61,6 +63,23 @@ Fields::Fields(const YAML::Node& node, std::string path, std::string source)
   }
 }
 
+namespace {
+
+/// Why a scalar is not read as a double: its text out of a double's range (1e400 was called
+/// "not a number", or "not a list of 2 numbers" inside a list), or `what`.
+std::string why_not_a_double(const YAML::Node& n, const std::string& what) {
+  if (!n.IsScalar()) return what;
+  const std::string text = n.Scalar();
+  errno = 0;
+  char* end = nullptr;
+  std::strtod(text.c_str(), &end);
+  if (!text.empty() && end == text.c_str() + text.size() && errno == ERANGE)
+    return "'" + text + "' is out of the range of a double (magnitudes 2.2e-308 to 1.8e308, or 0)";
+  return what;
+}
+
+}  // namespace
+
 bool Fields::has(const std::string& k) const { return node_[k].IsDefined() && !node_[k].IsNull(); }
 
 void Fields::fail(const std::string& k, const std::string& what) const {
@@ -83,7 +102,7 @@ double Fields::number(const std::string& k) {
     if (!std::isfinite(v)) fail(k, "must be a finite number");
     return v;
   } catch (const YAML::Exception&) {
-    fail(k, "must be a number");
+    fail(k, why_not_a_double(n, "must be a number"));
   }
 }
 
@@ -140,7 +159,7 @@ std::array<double, 3> Fields::vector(const std::string& k, int n) {
     try {
       out[a] = v[a].as<double>();
     } catch (const YAML::Exception&) {
-      fail(k, "must be a list of " + std::to_string(n) + " numbers");
+      fail(k, why_not_a_double(v[a], "must be a list of " + std::to_string(n) + " numbers"));
     }
     if (!std::isfinite(out[a])) fail(k, "must hold finite numbers");
   }

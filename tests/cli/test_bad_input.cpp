@@ -105,6 +105,26 @@ TEST_CASE("a region that selects no particle is named", "[cli]") {
   require_rejected(s, {"scene.yaml", "boundary[0].region: selects no particle"});
 }
 
+TEST_CASE("a number out of a double's range is named as such", "[cli]") {
+  // (1e400 was "must be a number", and in a list "must be a list of 2 numbers".)
+  require_rejected(with(tiny_scene, "E: 1.0e9", "E: 1.0e400"), {"material.E: '1.0e400' is out of the range of a double"});
+}
+
+TEST_CASE("a number out of a double's range inside a list is named as such", "[cli]") {
+  require_rejected(with(tiny_scene, "    pressure: 1.0e6\n", "    traction: [1e400, 0]\n"),
+                   {"boundary[1].traction: '1e400' is out of the range of a double"});
+}
+
+TEST_CASE("a fix that names a component twice is refused", "[cli]") {
+  // (It ran, holding x alone: the second name was a typo for another.)
+  require_rejected(with(tiny_scene, "fix: [x, y]", "fix: [x, x]"), {"boundary[0].fix: names x twice"});
+}
+
+TEST_CASE("a fix that names no component is refused", "[cli]") {
+  // (It ran, holding nothing, and was reported as a support with a reaction of zero.)
+  require_rejected(with(tiny_scene, "fix: [x, y]", "fix: []"), {"boundary[0].fix: names no component"});
+}
+
 TEST_CASE("an unknown side name is named with its line", "[cli]") {
   const std::string s = with(tiny_scene, "region: top", "region: roof");
   require_rejected(s, {at_line(s, "roof", "boundary[1].region: unknown side 'roof'")});
