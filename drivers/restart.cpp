@@ -86,7 +86,6 @@ std::set<std::string> Restart::files() const {
 void Restart::bring_snapshots(const std::string& out) const {
   if (in_place(out)) return;
   for (const auto& file : files()) {
-    if (file == checkpoint_name) continue;
     // As every file of a run: under its name only when whole.
     const std::string to = out + "/" + file, tmp = to + ".tmp";
     std::error_code ec;
@@ -95,7 +94,7 @@ void Restart::bring_snapshots(const std::string& out) const {
     if (ec) {
       std::error_code ignored;
       fs::remove(tmp, ignored);
-      throw InputError("--restart " + dir_ + ": copying the snapshot " + file + " into " + out + " failed: " + ec.message());
+      throw InputError("--restart " + dir_ + ": copying " + file + " into " + out + " failed: " + ec.message());
     }
   }
 }

@@ -25,9 +25,12 @@ class Restart {
   /// Whether the output folder `out` is DIR itself.
   bool in_place(const std::string& out) const;
   /// The files of DIR that belong to the run resumed: the checkpoint and the snapshots it
-  /// lists (.vtu, and .csv where they are). @throws InputError for a listed .vtu DIR lacks.
+  /// lists (.vtu, and .csv where the run wrote them). @throws InputError for a listed file
+  /// DIR lacks.
   std::set<std::string> files() const;
-  /// Copies files() but the checkpoint into `out`, unless in place.
+  /// Copies files() into `out`, unless in place: the checkpoint too, so that `out` can be
+  /// resumed again however the resumed run ends (a run that wrote no later checkpoint left
+  /// `out` without one, where the uninterrupted run's folder has one).
   void bring_snapshots(const std::string& out) const;
   /// After the build: the particle and dof counts and the positions are the scene's.
   /// @throws InputError.

@@ -231,6 +231,11 @@ TEST_CASE("an LBC load path resumed into another folder ends bit for bit, its ea
   CHECK(o.out.find("resuming from written/checkpoint.bin (load step 1 of stage 2)") != std::string::npos);
   CHECK(slurp(d.path / "resumed" / "summary.json").find("\"particles_yielded\": 100") != std::string::npos);
   require_same_results(d.path / "reference", d.path / "resumed");
+  // No checkpoint fell after the resumed step: the folder holds the one it resumed from, and
+  // can be resumed again (it had none, and was refused: "the folder holds no checkpoint").
+  REQUIRE(fs::exists(d.path / "resumed" / "checkpoint.bin"));
+  require_ok(perinom(d, "run " + biaxial + " --restart resumed --out again" + sets));
+  require_same_results(d.path / "reference", d.path / "again");
 }
 
 TEST_CASE("an LBC load path checkpointed at its last step resumes to the same files, its .pvd and summary included",
