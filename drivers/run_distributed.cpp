@@ -28,7 +28,6 @@
 #include "diagnostics.hpp"
 #include "distributed_output.hpp"
 #include "locking_warning.hpp"
-#include "support_check.hpp"
 #include "memory_estimate.hpp"
 #include "output_folder.hpp"
 #include "perinom/core/error.hpp"
@@ -49,6 +48,7 @@
 #include "rank_memory.hpp"
 #include "reactions_output.hpp"
 #include "small_strain_check.hpp"
+#include "support_check.hpp"
 #include "run_output.hpp"
 #include "terminal_progress.hpp"
 
