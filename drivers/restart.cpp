@@ -65,17 +65,18 @@ bool Restart::in_place(const std::string& out) const {
 
 std::set<std::string> Restart::files() const {
   std::set<std::string> out = {checkpoint_name};
-  for (const auto& s : progress_.snapshots) {
+  for (std::size_t k = 0; k < progress_.snapshots.size(); ++k) {
+    const auto& s = progress_.snapshots[k];
     if (!fs::is_regular_file(dir_ + "/" + s.file))
       throw InputError("--restart " + dir_ + ": the checkpoint lists the snapshot " + s.file +
                        ", which the folder does not hold");
     out.insert(s.file);
-    // Its .csv where the run wrote one (output.csv), or where one is there (a checkpoint
-    // from before snapshot_csv was recorded): a resumed run without it ended with exit 0
-    // and a folder short of the files the user asked for.
+    // Its .csv where the checkpoint saw one, or where one is there (a checkpoint from before
+    // snapshot_csv was recorded): a resumed run without it ended with exit 0 and a folder
+    // short of the files the user asked for.
     const std::string csv = s.file.substr(0, s.file.rfind('.')) + ".csv";
     const bool there = fs::is_regular_file(dir_ + "/" + csv);
-    if (progress_.snapshot_csv && !there)
+    if (k < progress_.snapshot_csv.size() && progress_.snapshot_csv[k] != 0 && !there)
       throw InputError("--restart " + dir_ + ": the checkpoint lists the snapshot " + s.file +
                        ", whose point data the run also wrote as " + csv + " (output.csv), which the folder does not hold");
     if (there) out.insert(csv);

@@ -24,7 +24,9 @@ io::Checkpoint run_records(const Problem& p, const RunIdentity& id, const RunPro
   for (const auto& s : run.snapshots) times.push_back(s.time), files += s.file + "\n";
   c.put("snapshot_times", std::move(times));
   c.put("snapshot_files", std::move(files));
-  c.put_integer("snapshot_csv", p.scene.output.csv ? 1 : 0);
+  std::vector<std::int64_t> csv = run.snapshot_csv;
+  csv.resize(run.snapshots.size(), 0);
+  c.put("snapshot_csv", std::move(csv));
   c.put_integer("last_snapshot", run.last_snapshot);
   std::vector<double> rows;
   for (const auto& row : run.probe_rows) rows.insert(rows.end(), row.begin(), row.end());
@@ -68,7 +70,7 @@ RunProgress run_progress(const io::Checkpoint& c) {
     at = end + 1;
   }
   if (at != files.size()) throw InputError(c.source + ": the checkpoint lists more snapshot_files than snapshot_times");
-  run.snapshot_csv = c.has("snapshot_csv") && c.integer("snapshot_csv") != 0;
+  if (c.has("snapshot_csv")) run.snapshot_csv = c.integers("snapshot_csv", times.size());
   run.last_snapshot = c.integer("last_snapshot");
   const std::int64_t columns = c.integer("probe_columns");
   const auto& rows = c.reals("probe_rows");

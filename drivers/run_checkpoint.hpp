@@ -4,8 +4,9 @@
 // io/checkpoint.hpp; resuming a run from one is restart.hpp.
 //   what it was written for: scene (Scene::canonical), particles, dofs, positions (a
 //     fingerprint of the particles' reference positions), solver (adr, verlet or load_path)
-//   the run's progress: snapshot_times, snapshot_files (one name a line), snapshot_csv (1
-//     where each snapshot has its .csv beside it: output.csv), last_snapshot,
+//   the run's progress: snapshot_times, snapshot_files (one name a line), snapshot_csv (one
+//     integer a snapshot: 1 where its .csv was in the folder when the checkpoint was
+//     written), last_snapshot,
 //     probe_rows with probe_columns (a load path's point-probe histories)
 //   the solver's state (io/solver_states.hpp: every field of AdrState, VerletState or
 //     LoadPathState under its name, prefixed adr., verlet. or load_path.)
@@ -33,9 +34,10 @@ struct RunProgress {
   std::vector<io::PvdSeries::Step> snapshots;
   std::int64_t last_snapshot = -1;
   std::vector<std::vector<double>> probe_rows;
-  /// Read back: each snapshot has its .csv (output.csv; false in checkpoints before
-  /// 2026-12-07). Written from the scene's output.csv.
-  bool snapshot_csv = false;
+  /// One flag a snapshot: its .csv was in the folder when the checkpoint was written (per
+  /// snapshot, not the scene's output.csv: a resumed run may turn csv on or off, and the
+  /// earlier snapshots keep what they had). Empty in checkpoints before 2026-12-07.
+  std::vector<std::int64_t> snapshot_csv;
 };
 
 /// FNV-1a 64 of the particles' reference positions (their bytes): a mesh or point file

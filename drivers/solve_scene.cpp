@@ -1,5 +1,6 @@
 #include "solve_scene.hpp"
 
+#include <filesystem>
 #include <optional>
 #include <stdexcept>
 
@@ -17,7 +18,12 @@ SolveReport solve(Problem& p, const std::string& dir, std::vector<double>& u, io
   const Scene& scene = p.scene;
   const std::size_t dofs = p.physics().dofs();
   // What a checkpoint holds beside the solver's state, as it is when the checkpoint is due.
-  const auto progress_now = [&] { return RunProgress{series.steps(), last_snapshot, probes.rows}; };
+  const auto progress_now = [&] {
+    RunProgress run{series.steps(), last_snapshot, probes.rows, {}};
+    for (const auto& s : run.snapshots)  // (a stat a snapshot, at a checkpoint only)
+      run.snapshot_csv.push_back(std::filesystem::is_regular_file(dir + "/" + s.file.substr(0, s.file.rfind('.')) + ".csv"));
+    return run;
+  };
   // (Read only where checkpoints are written: a mesh is hashed whole.)
   const RunIdentity id = scene.output.checkpoint_every > 0 ? run_identity(p) : RunIdentity{};
   if (scene.load_path()) {

@@ -279,6 +279,19 @@ TEST_CASE("a checkpoint whose snapshots' files are gone from its folder is refus
   SECTION("both there: resumed") { require_ok(perinom(d, "run " + biaxial + " --restart written --out resumed" + sets)); }
 }
 
+TEST_CASE("a run resumed with output.csv turned on resumes again: its earlier snapshots are not asked for a .csv", "[cli][checkpoint][load_path]") {
+  // The flag is each snapshot's: written by the scene's output.csv alone, the resumed run's
+  // checkpoint at step 5 claimed .csv files for steps 1 to 4, which the first run never wrote.
+  ScratchDir d;
+  const std::string sets = " --set stages.0.steps=3 --set stages.1.steps=3 --set discretization.dx=0.005 --set output.vtk_every=1";
+  require_ok(perinom(d, "run " + biaxial + " --out first --set output.checkpoint_every=4" + sets));
+  require_ok(perinom(d, "run " + biaxial + " --restart first --out second --set output.csv=true --set output.checkpoint_every=5" + sets));
+  const Outcome o = perinom(d, "run " + biaxial + " --restart second --out third --set output.csv=true" + sets);
+  INFO(o.out << o.err);
+  CHECK(o.out.find("resuming from second/checkpoint.bin (load step 2 of stage 2)") != std::string::npos);
+  REQUIRE(o.exit_code == 0);
+}
+
 TEST_CASE("a checkpoint of another scene, a damaged one and a folder without one are refused", "[cli][checkpoint]") {
   ScratchDir d;
   std::ofstream(d.path / "scene.yaml") << tiny_scene;
