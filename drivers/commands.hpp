@@ -35,16 +35,6 @@ struct Options {
   bool check = false;             ///< bench force: the distributed force against the serial one
 };
 
-/// Bad input every MPI rank met alike (a refusal before the ranks start; reading the scene
-/// or building the whole cloud, which every rank does on the same files): printed once, by
-/// rank `rank` == 0, and every rank ends with exit code 2 on its own, without MPI_Abort
-/// (its banner, and the message once per rank, buried the one line that mattered).
-class InputErrorOnEveryRank : public InputError {
- public:
-  InputErrorOnEveryRank(const std::string& what, long rank) : InputError(what), rank(rank) {}
-  long rank;
-};
-
 int run(const Options& opt);
 int check(const Options& opt);
 int bench(const Options& opt);

@@ -65,11 +65,10 @@ int main(int argc, char** argv) {
     // under mpirun would do the whole work on every rank and write the same files.
     const bool distributed = args[0] == "run" || (args[0] == "bench" && args.size() > 1 && args[1] == "force");
     if (mpirun_processes() > 1 && !distributed)
-      throw cli::InputErrorOnEveryRank("perinom " + args[0] + " runs on one MPI rank: of the distributed path only 'perinom run' "
+      throw InputErrorOnEveryRank("perinom " + args[0] + " runs on one MPI rank: of the distributed path only 'perinom run' "
                        "and 'perinom bench force' are built yet, and mpirun -np " + std::to_string(mpirun_processes()) +
                        " would do the whole work on every rank (run it without mpirun; solver.linear_solver mumps "
-                       "or gamg uses PETSc on one rank)",
-                       mpirun_rank());
+                       "or gamg uses PETSc on one rank)");
     for (std::size_t k = 1; k < args.size(); ++k) {
       const std::string& a = args[k];
       auto value = [&]() -> std::string {
@@ -140,8 +139,8 @@ int main(int argc, char** argv) {
     if (opt.command == "material-point") return cli::material_point(opt);
     usage();
     throw InputError("unknown command '" + opt.command + "'");
-  } catch (const cli::InputErrorOnEveryRank& e) {
-    if (e.rank == 0) std::fprintf(stderr, "perinom: error: %s\n", e.what());
+  } catch (const InputErrorOnEveryRank& e) {
+    if (mpirun_rank() == 0) std::fprintf(stderr, "perinom: error: %s\n", e.what());
     return 2;
   } catch (const InputError& e) {
     if (!dispatched && mpirun_processes() > 1) {  // a bad option: every rank's alike, said once
@@ -150,6 +149,9 @@ int main(int argc, char** argv) {
     }
     std::fprintf(stderr, "perinom: error: %s\n", e.what());
     return failed(2);
+  } catch (const SolveErrorOnEveryRank& e) {
+    if (mpirun_rank() == 0) std::fprintf(stderr, "perinom: solve failed: %s\n", e.what());
+    return 3;
   } catch (const SolveError& e) {
     std::fprintf(stderr, "perinom: solve failed: %s\n", e.what());
     return failed(3);

@@ -73,14 +73,14 @@ RankMemory require_rank_memory(const Scene& s, double local_bonds, double local_
   if (max_memory > 0.0 && m.most_bytes > max_memory) {
     what << key << ": rank " << most << " needs about " << long(mib(m.most_bytes)) << " MiB, more than the "
          << long(mib(max_memory)) << " MiB allowed to each rank by --max-memory" << cure;
-    throw InputErrorOnEveryRank(what.str(), world.rank);  // every rank holds every row
+    throw InputErrorOnEveryRank(what.str());  // every rank holds every row
   }
   for (const auto& [host, need] : host_need)
     if (max_memory <= 0.0 && host_room[host] > 0.0 && need > host_room[host]) {
       what << key << ": the " << long(host_ranks[host]) << " ranks of one host need about " << long(mib(need))
            << " MiB, more than the " << long(mib(host_room[host])) << " MiB it has available" << cure
            << " (--max-memory, a bound per rank, overrides the check)";
-      throw InputErrorOnEveryRank(what.str(), world.rank);  // every rank holds every row
+      throw InputErrorOnEveryRank(what.str());  // every rank holds every row
     }
   return m;
 }

@@ -107,7 +107,7 @@ auto alike_on_ranks(const Ranks& world, Phase phase) {
   } catch (const InputError& e) {
     error = e.what();
   }
-  if (sum_over_ranks(error.empty() ? 0.0 : 1.0) == double(world.size)) throw InputErrorOnEveryRank(error, world.rank);
+  if (sum_over_ranks(error.empty() ? 0.0 : 1.0) == double(world.size)) throw InputErrorOnEveryRank(error);
   if (!error.empty()) throw InputError(error);
   return std::move(*result);
 }
@@ -317,12 +317,15 @@ int run_distributed(const Options& opt) {
 
   if (!final_state_error.empty() && rep.failure.empty()) throw SolveError(final_state_error);
   // As a serial run: a load step that did not balance leaves the path not converged (exit 1).
+  // The solvers decide on values summed over the ranks: rep.failure is every rank's alike,
+  // said once.
   if (!rep.failure.empty() && scene.load_path() && !rep.diverged) {
-    std::fprintf(stderr, "perinom: NOT converged: %s; the last balanced state and results in %s\n", rep.failure.c_str(),
+    if (root)
+      std::fprintf(stderr, "perinom: NOT converged: %s; the last balanced state and results in %s\n", rep.failure.c_str(),
                  dir.c_str());
     return 1;
   }
-  if (!rep.failure.empty()) throw SolveError(rep.failure + "; results in " + dir);
+  if (!rep.failure.empty()) throw SolveErrorOnEveryRank(rep.failure + "; results in " + dir);
   if (dynamic)
     std::printf("perinom: %lld steps to t = %.6e s (stable step %.3e s) on %d ranks; results in %s\n",
                 static_cast<long long>(rep.iterations), rep.end_time, rep.stable_time_step, world.size, dir.c_str());

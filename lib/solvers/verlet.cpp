@@ -151,7 +151,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
                     "the largest energy or work so far (the discrete problem gains energy: an unstable formulation "
                     "or time step; solver.energy_check: false turns this guard off)",
                     static_cast<long long>(step), t, kin + strain, e0, all_work, defect, opt.energy_tolerance);
-      throw SolveError(what);
+      throw SolveErrorOnEveryRank(what);  // (its sums are over the ranks: alike on every rank)
     }
   };
   auto record = [&]() { rep.history.values.insert(rep.history.values.end(), row.begin(), row.end()); };

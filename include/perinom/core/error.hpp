@@ -20,6 +20,20 @@ class SolveError : public std::runtime_error {
   explicit SolveError(const std::string& what) : std::runtime_error(what) {}
 };
 
+/// An InputError or SolveError every MPI rank raises alike: decided on values the ranks share
+/// (MUMPS's count of null pivots, a residual summed over the ranks, a scene every rank reads).
+/// The command line prints it once, on rank 0, and every rank ends with its exit code on its
+/// own, without MPI_Abort (whose banner, and the message once per rank, buried the one line
+/// that mattered). In a one-process run they are their base classes.
+class InputErrorOnEveryRank : public InputError {
+ public:
+  using InputError::InputError;
+};
+class SolveErrorOnEveryRank : public SolveError {
+ public:
+  using SolveError::SolveError;
+};
+
 /// A state failed the NaN/Inf guard: a force, an energy or a field to be written is not
 /// finite. `step` is the iteration or time step that failed; the solver has put the last
 /// state that passed the guard back into its output vectors.
