@@ -16,6 +16,7 @@
 #include "perinom/scene/registry.hpp"
 #include "perinom/solvers/jacobian.hpp"
 #include "perinom/solvers/petsc.hpp"
+#include "point_volume_note.hpp"
 #include "stability_check.hpp"
 #include "support_check.hpp"
 #include "thin_body_note.hpp"
@@ -91,6 +92,8 @@ int check(const Options& opt) {
     if (line.label == "dimension") dimension_note += line.text;
   std::printf("  dimension       %d%s\n", scene.dim, dimension_note.c_str());
   std::printf("  particles       %zu\n", p.cloud.size());
+  if (const std::string volumes = point_volume_warning(p); !volumes.empty())
+    std::printf("  volumes         warning: %s\n", volumes.c_str());
   if (const std::string thin = thin_body_note(p); !thin.empty()) std::printf("  thin            %s\n", thin.c_str());
   if (const std::string locking = locking_warning(p); !locking.empty())
     std::printf("  locking         warning: %s\n", locking.c_str());

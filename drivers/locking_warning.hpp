@@ -26,8 +26,8 @@ std::string locking_warning(const Problem& p);
 /// a mechanism does not level off at its limit load (Prandtl's footing, measured).
 std::string plastic_collapse_note(const Problem& p);
 
-/// Prints, at the start of a run (serial, or the root of a distributed one), the thin-body
-/// note, the locking warning, the plastic collapse note and the layer-support note
+/// Prints, at the start of a run (serial, or the root of a distributed one), the point
+/// volumes' warning (point_volume_note.hpp), the thin-body note, the locking warning, the plastic collapse note and the layer-support note
 /// (layer_support_note.hpp) that apply to the problem
 /// (`perinom: note:` / `perinom: warning:`).
 void print_body_notes(const Problem& p);

@@ -136,6 +136,21 @@ void read_stages(const std::vector<YAML::Node>& items, const std::string& source
   }
 }
 
+namespace {
+
+/// The file a probe writes: probe_NAME.csv for a line, probe_NAME_history.csv for a point (on
+/// a load path).
+std::string probe_file(const ProbeSpec& p) { return "probe_" + p.name + (p.is_line ? ".csv" : "_history.csv"); }
+
+/// Whether `stem` is a snapshot's of the scene `scene`: scene_ and six or more digits.
+bool snapshot_stem(const std::string& scene, const std::string& stem) {
+  const std::size_t n = scene.size() + 1;
+  return stem.size() >= n + 6 && stem.compare(0, n, scene + "_") == 0 &&
+         stem.find_first_not_of("0123456789", n) == std::string::npos;
+}
+
+}  // namespace
+
 void read_probes(const std::vector<YAML::Node>& items, const std::string& source, Scene& s) {
   for (std::size_t k = 0; k < items.size(); ++k) {
     Fields f(items[k], "probes[" + std::to_string(k) + "]", source);
@@ -148,6 +163,13 @@ void read_probes(const std::vector<YAML::Node>& items, const std::string& source
       if (q.name == p.name) f.fail("name", "another probe is already named '" + p.name + "'");
     p.is_line = f.has("line");
     if (p.is_line == f.has("point")) f.fail("name", "a probe has exactly one of point or line");
+    // The files probes write, apart from one another and from the snapshots' NAME_NNNNNN.csv.
+    for (const auto& q : s.probes)
+      if (probe_file(q) == probe_file(p))
+        f.fail("name", probe_file(p) + " is probe '" + q.name + "''s file already (a line probe writes probe_NAME.csv, "
+                       "a point probe on a load path probe_NAME_history.csv)");
+    if (p.is_line && snapshot_stem(s.name, "probe_" + p.name))
+      f.fail("name", probe_file(p) + " is the name of a snapshot's .csv of the scene '" + s.name + "' (output.csv)");
     if (p.is_line) {
       Fields l = f.map("line");
       p.from = l.vector("from", s.dim);

@@ -194,3 +194,23 @@ TEST_CASE("a point given twice is named by its two lines, and a dx beyond the bo
   require_rejected(with(mesh_scene, "ratio: 3.015", "ratio: 100.0"),
                    {"discretization.horizon.ratio", "more than twice the body's largest extent"});
 }
+
+TEST_CASE("point volumes that do not fit the positions are warned of, naming the thickness", "[cli][mesh]") {
+  // Volumes per unit thickness beside thickness 0.001 m ran with exit 0 and a mean spacing 32
+  // times the particles': a line probe gathered the whole body. check and run say so.
+  const MeshDir fitting(points_scene, {{"cloud.csv", points_csv()}});
+  const Outcome ok = fitting.check();
+  INFO("stderr: " << ok.err);
+  CHECK(ok.exit_code == 0);
+  CHECK(ok.out.find("volumes do not fit") == std::string::npos);
+  const std::string thin = with(points_scene, "  points: cloud.csv\n", "  points: cloud.csv\n  thickness: 0.001\n");
+  const MeshDir d(thin, {{"cloud.csv", points_csv()}});
+  const Outcome o = d.check();
+  INFO("check stdout: " << o.out);
+  CHECK(o.exit_code == 0);
+  CHECK(o.out.find("volumes         warning: geometry.points: sub/cloud.csv: the volumes do not fit the positions: the "
+                   "median particle's (volume / geometry.thickness)^(1/2) is 31.6 times") != std::string::npos);
+  const Outcome r = perinom(d.dir, "run sub/scene.yaml --out out");
+  INFO("run stdout: " << r.out);
+  CHECK(r.out.find("warning: geometry.points: sub/cloud.csv: the volumes do not fit") != std::string::npos);
+}

@@ -182,3 +182,25 @@ TEST_CASE("a horizon more than twice the body is refused by key: every particle 
   const std::string s = with(tiny_scene, "ratio: 3.015", "ratio: 1.0e6");
   require_rejected(s, {at_line(s, "ratio: 1.0e6", "discretization.horizon.ratio: gives a horizon"), "every particle"});
 }
+
+TEST_CASE("probes whose files would overwrite another output are refused, naming the file", "[cli]") {
+  // A line probe 'top_uy_history' wrote over the point probe top_uy's load-step history, and
+  // a line probe '000000' of the scene 'probe' over its first snapshot's .csv, with exit 0.
+  SECTION("a line probe on a point probe's history") {
+    const std::string s = with(tiny_scene, "  - name: mid\n", "  - name: top_uy_history\n");
+    require_rejected(s, {at_line(s, "name: top_uy_history", "probes[1].name: probe_top_uy_history.csv is probe 'top_uy''s file")});
+  }
+  SECTION("a line probe on a snapshot's .csv") {
+    const std::string s = with(with(tiny_scene, "name: tiny", "name: probe"), "  - name: mid\n", "  - name: \"000012\"\n");
+    require_rejected(s, {"probes[1].name: probe_000012.csv is the name of a snapshot's .csv of the scene 'probe'"});
+  }
+}
+
+TEST_CASE("probe names that only look alike are accepted", "[cli]") {
+  ScratchDir dir;
+  const std::string s = with(with(tiny_scene, "name: tiny", "name: probe"), "  - name: mid\n", "  - name: \"00001\"\n");
+  std::ofstream(dir.path / "scene.yaml") << with(s, "  - name: top_uy\n", "  - name: mid_history\n");
+  const Outcome o = perinom(dir, "check scene.yaml");
+  INFO("stderr: " << o.err);
+  CHECK(o.exit_code == 0);
+}
