@@ -16,15 +16,36 @@ struct Difference {
   double relative_max = 0.0;  ///< max |a - b| / max |b|
 };
 
+/// The largest norms of a field along a load path's steps (one process's values).
+struct PathScale {
+  double l2 = 0.0, max = 0.0;
+  void add(const std::vector<double>& b) {
+    double sum = 0.0;
+    for (const double v : b) sum += v * v, max = std::max(max, std::abs(v));
+    l2 = std::max(l2, std::sqrt(sum));
+  }
+};
+
+/// An end state whose norm is below this fraction of the largest along its path is at rest
+/// (a path unloaded to zero): its own norm is rounding, and a difference is taken over the
+/// path's largest instead.
+inline constexpr double kUnloadedEnd = 1e-6;
+
 /// a against the reference b (same length); plain norms where b is zero. Over MPI ranks
-/// (`ranks` the rank's model, a and b its own values) the norms are the whole body's.
-inline Difference difference(const std::vector<double>& a, const std::vector<double>& b, const Model* ranks = nullptr) {
+/// (`ranks` the rank's model, a and b its own values) the norms are the whole body's. With a
+/// `path` (serial) whose largest norm b's is below kUnloadedEnd of, over the path's norms
+/// (`over_path` then true).
+inline Difference difference(const std::vector<double>& a, const std::vector<double>& b, const Model* ranks = nullptr,
+                             const PathScale* path = nullptr, bool* over_path = nullptr) {
   double sum[2] = {0, 0}, max[2] = {0, 0};  // |a - b|^2, |b|^2; max |a - b|, max |b|
   for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
     sum[0] += (a[k] - b[k]) * (a[k] - b[k]), sum[1] += b[k] * b[k];
     max[0] = std::max(max[0], std::abs(a[k] - b[k])), max[1] = std::max(max[1], std::abs(b[k]));
   }
   if (ranks) ranks->sum_across_ranks(sum, 2), ranks->max_across_ranks(max, 2);
+  const bool rest = path && std::sqrt(sum[1]) < kUnloadedEnd * path->l2;
+  if (over_path) *over_path = rest;
+  if (rest) sum[1] = path->l2 * path->l2, max[1] = path->max;
   return {sum[1] > 0 ? std::sqrt(sum[0] / sum[1]) : std::sqrt(sum[0]), max[1] > 0 ? max[0] / max[1] : max[0]};
 }
 

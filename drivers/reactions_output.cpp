@@ -1,5 +1,6 @@
 #include "reactions_output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -83,13 +84,13 @@ void add_reaction_results(Model& model, const Loading& loading, double s, const 
   // none, to the sum of the nodal loads' magnitudes, or else to the largest reaction.
   const double net = length(applied.data(), dpp);
   const bool balanced = net <= 1e-6 * gross;
-  const bool broke = gross == 0.0 && carried > largest;  // carried: a load path broken apart
+  const bool broke = gross == 0.0 && carried > largest;  // a load path broken apart, or unloaded
   const bool noise = rounding > 0.0;  // loads and reactions at rounding: the stiffness force
   const double scale = noise ? rounding : !balanced ? net : gross > 0.0 ? gross : broke ? carried : largest;
   const char* over = noise      ? "stiffness force (the loads and reactions are rounding)"
                      : !balanced ? "|applied|"
                      : gross > 0.0 ? "sum |nodal load|"
-                     : broke      ? "largest reaction carried"
+                     : broke      ? "largest reaction carried along the path"
                                   : "largest reaction";
   const double error = scale > 0.0 ? length(sum.data(), dpp) / scale : 0.0;
   std::printf("perinom: equilibrium: applied loads %s N, reactions %s N, error |applied + reactions| / %s = %.3e\n",
@@ -102,6 +103,16 @@ void add_reaction_results(Model& model, const Loading& loading, double s, const 
   eq["relative_to"] = std::string(over);
   eq["scale"] = scale;  // N: the value of relative_to
   summary["equilibrium"] = eq;
+}
+
+double largest_reaction_carried(const History& h) {
+  double carried = 0.0;
+  for (std::size_t c = 0; c + 1 < h.columns.size(); ++c) {
+    const std::string& name = h.columns[c];
+    if (name.size() < 4 || name.compare(name.size() - 3, 2, ".R") != 0) continue;
+    for (std::size_t at = c; at < h.values.size(); at += h.columns.size()) carried = std::max(carried, std::abs(h.values[at]));
+  }
+  return carried;
 }
 
 void add_rounding_floor(const SolveReport& rep, io::Json& solver) {

@@ -21,13 +21,19 @@ io::Json pin_results(const Problem& p);
 /// reactions: the sums; error; relative_to: which denominator).
 /// A dynamic run (Verlet) gets the reactions only: inertia balances its loads too.
 /// A distributed model's sums go over the ranks (every rank calls it). `carried` (N, 0: none)
-/// is the largest reaction a load path had before its end: after the body has broken apart,
-/// the last reactions are noise, and the error is taken over the load it carried instead.
+/// is the largest reaction a load path had before its end (largest_reaction_carried): when
+/// the end applies no load and its reactions are below it (a body broken apart, a path
+/// unloaded to rest, whose reactions are rounding: the error read 1.000 on 1e-20 N), the error
+/// is taken over the load the path carried instead.
 /// `rounding` (N, 0: none): a solve that converged at its rounding floor passes its
 /// stiffness force (SolveReport): the loads and reactions are rounding, and the error is taken
 /// over the size of the forces the internal force sums instead.
 void add_reaction_results(Model& model, const Loading& loading, double s, const std::vector<double>& u,
                           bool dynamic, io::Json& summary, double carried = 0.0, double rounding = 0.0);
+
+/// The largest support reaction component of a load path's steps (the history's `.R`
+/// columns, N); 0 without supports.
+double largest_reaction_carried(const History& history);
 
 /// For a static solve: solver.residual_force (N, |F| at the end), solver.stiffness_force (N,
 /// the size of the forces the internal force sums) and solver.at_rounding_floor (converged

@@ -254,16 +254,7 @@ int run(const Options& opt) {
   if (failure.empty()) {
     // The final state's load factor: 1, or Verlet's ramp where the run ended.
     const double s_end = dynamic && scene.solver.ramp_time > 0.0 ? std::min(1.0, rep.end_time / scene.solver.ramp_time) : 1.0;
-    // A load path that broke bonds: the largest support reaction of its steps.
-    double carried = 0.0;
-    if (scene.damage && scene.load_path()) {
-      const auto& h = rep.history;
-      for (std::size_t c = 0; c + 1 < h.columns.size(); ++c) {
-        const std::string& name = h.columns[c];
-        if (name.size() < 4 || name.compare(name.size() - 3, 2, ".R") != 0) continue;
-        for (std::size_t at = c; at < h.values.size(); at += h.columns.size()) carried = std::max(carried, std::abs(h.values[at]));
-      }
-    }
+    const double carried = scene.load_path() ? largest_reaction_carried(rep.history) : 0.0;
     add_reaction_results(p.physics(), scene.load_path() ? p.stages.back().loading : p.loading, s_end, u, dynamic, summary,
                          carried, rep.at_rounding_floor ? rep.stiffness_force : 0.0);
     check_small_strain(p, u, summary);

@@ -297,7 +297,8 @@ int run_distributed(const Options& opt) {
   if (rep.failure.empty()) {
     const double s_end = dynamic && scene.solver.ramp_time > 0.0 ? std::min(1.0, rep.end_time / scene.solver.ramp_time) : 1.0;
     add_reaction_results(distributed, scene.load_path() ? stages.back().loading : loading, s_end, u, dynamic, summary,
-                         0.0, rep.at_rounding_floor ? rep.stiffness_force : 0.0);
+                         scene.load_path() ? largest_reaction_carried(rep.history) : 0.0,
+                         rep.at_rounding_floor ? rep.stiffness_force : 0.0);
     check_small_strain_over_ranks(run, u, summary);
   }
   if (const ModelHistory* history = distributed.history()) summary["plasticity"] = plastic_summary(distributed, *history);

@@ -172,6 +172,7 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
   // changes keep (summed once here, then on the rows each change touches).
   const bool follow_density = changes && changes->stable_step && changes->row_sums && adr;
   double carried = resume ? resume->carried : 0.0;  // the largest reaction norm so far
+  double path_load = carried;  // the largest load or reaction norm of the steps so far (Newton's load_floor)
   if (changes && adr) adr->set_load_floor(carried);
   if (changes && adr && changes->dissipates) adr->damp_by_correction(true);
   if (follow_density) {
@@ -197,11 +198,20 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
       stage_reactions.resize(loading.support_names.size() * d);
       loading.reactions(fint.data(), r.load_factor, d, stage_reactions.data());
       model.sum_across_ranks(stage_reactions.data(), int(stage_reactions.size()));  // (over ranks: each its own supports' share)
+      double reaction2 = 0.0;
+      for (const double c : stage_reactions) reaction2 += c * c;
+      path_load = std::max(path_load, std::sqrt(reaction2));
       const std::size_t at = rep.history.values.size();
       rep.history.values.resize(at + supports.support_names.size() * d, 0.0);
       for (std::size_t g = 0; g < loading.support_names.size(); ++g)
         for (int a = 0; a < d; ++a)
           rep.history.values[at + supports.add_support(loading.support_names[g]) * d + a] = stage_reactions[g * d + a];
+    }
+    if (opt.scheme == LoadPathScheme::newton) {
+      double applied = stages[r.stage - 1].loading.force_norm(r.load_factor);
+      applied *= applied;
+      model.sum_across_ranks(&applied, 1);
+      path_load = std::max(path_load, std::sqrt(applied));
     }
     if (changes) rep.history.values.push_back(double(r.broken));
     if (ledger) rep.history.add({ledger->work(), ledger->dissipated()});
@@ -218,6 +228,7 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
       if (opt.scheme == LoadPathScheme::newton) {
         NewtonOptions nopt = opt.newton;
         nopt.load_steps = stage.steps;
+        nopt.load_floor = path_load;
         std::vector<double> xi0 = plastic_strains(model);
         double t0 = wall_seconds();
         nopt.before_step = [&](int) {

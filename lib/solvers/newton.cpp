@@ -255,7 +255,7 @@ SolveReport solve_newton(TangentModel& model, const Loading& loading,
     system.residual(z.data(), data.s, R.data());
     R.resize(u.size());  // the constraint rows are not forces
     loading.zero_fixed(R.data());
-    const double load = system.load_norm(u.data(), data.s);
+    const double load = std::max(system.load_norm(u.data(), data.s), opt.load_floor);
     const double relative = load > 0.0 ? norm(R) / load : norm(R);
     if (!std::isfinite(relative) || !std::isfinite(norm(u))) {
       // The guard: a state or residual that is not finite is never kept, nor its row.

@@ -374,7 +374,7 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
       sums[1] += fi * fi;
     }
     model.sum_across_ranks(sums, 5);
-    const double load = std::sqrt(std::max(sums[2], sums[1]));
+    const double load = std::max(std::sqrt(std::max(sums[2], sums[1])), opt.load_floor);
     const double relative = load > 0.0 ? std::sqrt(sums[0]) / load : std::sqrt(sums[0]);
     if (!std::isfinite(relative) || !std::isfinite(sums[3])) {
       check(VecCopy(x_start.p, x.p), "VecCopy");

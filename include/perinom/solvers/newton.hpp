@@ -39,6 +39,12 @@ struct NewtonOptions {
   /// Checked before the first factorization against the ordering's fill (factor_memory.hpp): a solve
   /// that would not fit throws InputError naming solver.linear_solver.
   double memory_limit = 0.0;
+  /// The least load (N) the reported relative residual is taken over: its denominator is the
+  /// larger of the step's loads and reactions and this. A load path passes the largest load or
+  /// reaction its earlier stages carried: a stage that unloads the body to rest has loads and
+  /// reactions that are rounding (1e-10 N after 2e4 N), over which a converged step read 1.36.
+  /// KINSOL's convergence test does not use it.
+  double load_floor = 0.0;
   /// Runs as each load step begins (the plastic path's ModelHistory::begin_step).
   std::function<void(int step)> before_step;
   /// Runs after each converged load step with its number, the Newton iterations it took and
