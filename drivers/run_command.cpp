@@ -203,6 +203,7 @@ int run(const Options& opt) {
     solver["stable_time_step"] = rep.stable_time_step;
     solver["end_time"] = rep.end_time;
     add_energy_balance(rep.history, solver);
+    add_ramp_reached(scene.solver.ramp_time, rep.end_time, solver);
   }
   if (scene.damage && rep.iterations > 0) {
     // The cost of breaking: a step that looks (find) and one that breaks, against an intact

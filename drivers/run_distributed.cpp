@@ -281,6 +281,7 @@ int run_distributed(const Options& opt) {
     solver["stable_time_step"] = rep.stable_time_step;
     solver["end_time"] = rep.end_time;
     add_energy_balance(rep.history, solver);
+    add_ramp_reached(scene.solver.ramp_time, rep.end_time, solver);
   }
   if (rep.diverged) {
     solver["diverged_at"] = static_cast<long long>(rep.diverged_at);

@@ -65,4 +65,15 @@ void add_energy_balance(const History& h, io::Json& solver) {
                 100.0 * relative);
 }
 
+void add_ramp_reached(double ramp_time, double end_time, io::Json& solver) {
+  if (!(ramp_time > 0.0)) return;
+  const double s = std::min(1.0, end_time / ramp_time);
+  solver["load_factor_at_end"] = s;
+  if (s < 1.0)
+    warn("the run ended at t = %.4e s, before solver.ramp_time = %.4e s: the loads reached %.1f%% of their values "
+         "(the final state and reactions are at that factor; more solver.steps or a shorter ramp_time apply them "
+         "whole)",
+         end_time, ramp_time, 100.0 * s);
+}
+
 }  // namespace perinom::cli

@@ -99,3 +99,21 @@ TEST_CASE("a Verlet run that diverges with a given dt above the stable step esti
   CHECK(warned != std::string::npos);
   CHECK(warned < bold.out.find("results in"));
 }
+
+TEST_CASE("a Verlet run that ends before its ramp_time says how far its loads got", "[cli][verlet]") {
+  // 100 steps of about 1.5e-7 s against a ramp of 1e-4 s: the loads reach about 15%.
+  const Outcome o = bar("ramp", "run", "--out out --set solver.steps=100 --set solver.ramp_time=1.0e-4");
+  INFO("stdout: " << o.out << "\nstderr: " << o.err);
+  REQUIRE(o.exit_code == 0);
+  CHECK(o.out.find("before solver.ramp_time = 1.0000e-04 s: the loads reached") != std::string::npos);
+  const std::string summary = test_support::slurp(o.dir / "out" / "summary.json");
+  const double reached = test_support::json_number(summary, "load_factor_at_end");
+  CHECK(reached > 0.05);
+  CHECK(reached < 0.5);
+  CHECK(reached == Approx(test_support::json_number(summary, "end_time") / 1.0e-4).epsilon(1e-9));
+  // A ramp the run outlasts: the factor 1, no warning.
+  const Outcome whole = bar("ramp_whole", "run", "--out out --set solver.steps=100 --set solver.ramp_time=1.0e-6");
+  REQUIRE(whole.exit_code == 0);
+  CHECK(whole.out.find("the loads reached") == std::string::npos);
+  CHECK(test_support::json_number(test_support::slurp(whole.dir / "out" / "summary.json"), "load_factor_at_end") == 1.0);
+}
