@@ -243,6 +243,13 @@ YAML::Node apply_override(YAML::Node& root, const std::string& assignment) {
   if (eq == std::string::npos || eq == 0)
     throw InputError("--set " + assignment + ": expected dotted.key=value");
   const std::string path = assignment.substr(0, eq);
+  // An empty value read as YAML is null, which counts as absent: `solver.type=` ran ADR and
+  // `stages=` a scene without loads, with exit 0, and `boundary.0.pressure=` blamed the file.
+  if (assignment.find_first_not_of(" \t", eq + 1) == std::string::npos)
+    throw InputError("--set " + path + ": no value after '=' (to remove an optional key, write " + path + "=null)");
+  // A space in the key (' material.nu', from a quoted word) made it a key of the file's.
+  if (path.find_first_of(" \t") != std::string::npos)
+    throw InputError("--set '" + path + "': a key has no spaces (expected dotted.key=value)");
   YAML::Node value;
   try {
     value = YAML::Load(assignment.substr(eq + 1));
@@ -268,6 +275,7 @@ YAML::Node apply_override(YAML::Node& root, const std::string& assignment) {
   for (std::size_t start = 0;;) {
     const auto dot = dotted.find('.', start);
     parts.push_back(dotted.substr(start, dot - start));
+    if (parts.back().empty()) throw InputError("--set " + path + ": an empty key between dots (expected dotted.key=value)");
     if (dot == std::string::npos) break;
     start = dot + 1;
   }

@@ -204,3 +204,23 @@ TEST_CASE("probe names that only look alike are accepted", "[cli]") {
   INFO("stderr: " << o.err);
   CHECK(o.exit_code == 0);
 }
+
+TEST_CASE("a --set with no value, or a key with a space, is refused naming the --set", "[cli]") {
+  // solver.type= (null: absent) ran ADR with exit 0; ' material.nu' was blamed on the file.
+  SECTION("no value") {
+    require_rejected(tiny_scene, {"--set solver.type: no value after '='", "solver.type=null"}, "--set solver.type=");
+  }
+  SECTION("a space in the key") {
+    require_rejected(tiny_scene, {"--set ' material.E': a key has no spaces"}, "--set ' material.E=2e9'");
+  }
+  SECTION("an empty key between dots") {
+    require_rejected(tiny_scene, {"--set material..E: an empty key between dots"}, "--set material..E=2e9");
+  }
+  SECTION("null on purpose still removes an optional key") {
+    ScratchDir dir;
+    std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+    const Outcome o = perinom(dir, "check scene.yaml --set solver.tolerance=null");
+    INFO("stderr: " << o.err);
+    CHECK(o.exit_code == 0);
+  }
+}
