@@ -164,8 +164,15 @@ int check(const Options& opt) {
   for (const auto& item : items) not_assembled += (not_assembled.empty() ? "" : ", ") + item;
   if (!not_assembled.empty()) std::printf("  not assembled: %s\n", not_assembled.c_str());
   std::printf("  total           %.2f MiB (%.1f bytes per bond)\n", mb(total), double(total) / p.bonds);
-  std::printf("  peak memory     %.2f MiB (VmHWM, the process so far), estimated before building %.2f MiB\n",
-              mb(peak_resident_bytes()), mb(estimate.bytes));
+  // A body from files has no estimate before building (its size is in the file): a figure
+  // here (the bare process's) read as one beside "no estimate".
+  if (estimate.known)
+    std::printf("  peak memory     %.2f MiB (VmHWM, the process so far), estimated before building %.2f MiB\n",
+                mb(peak_resident_bytes()), mb(estimate.bytes));
+  else
+    std::printf("  peak memory     %.2f MiB (VmHWM, the process so far; a body from files is not estimated before "
+                "building)\n",
+                mb(peak_resident_bytes()));
   for (const auto& probe : p.probes) {
     if (probe.spec.is_line) {
       std::printf("  probe %-20s line, %zu particle(s)\n", probe.spec.name.c_str(), probe.particles.size());

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 
@@ -183,9 +184,12 @@ class Builder {
       lo = std::min(lo, m_.x[3 * v + 2]), hi = std::max(hi, m_.x[3 * v + 2]);
       extent = std::max({extent, std::abs(m_.x[3 * v]), std::abs(m_.x[3 * v + 1])});
     }
-    if (hi - lo > 1e-12 * extent)
-      throw InputError("a 2-D scene needs a mesh in a plane z = const (its nodes' z spans " + std::to_string(lo) +
-                       " to " + std::to_string(hi) + ")");
+    if (hi - lo > 1e-12 * extent) {
+      char span[200];  // (%g: a span of 2e-9 m printed by std::to_string read 0.000000 to 0.000000)
+      std::snprintf(span, sizeof span, "its nodes' z spans %.6g to %.6g m, more than 1e-12 of its extent %.6g m", lo, hi,
+                    extent);
+      throw InputError(std::string("a 2-D scene needs a mesh in a plane z = const (") + span + ")");
+    }
   }
 
   void add_facets(const FaceUse& use, const std::vector<int>& groups) {

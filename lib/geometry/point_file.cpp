@@ -48,6 +48,8 @@ std::ifstream open_csv(const std::string& path, const std::vector<std::string>& 
   if (!in) throw InputError("cannot open the file");
   std::string header;
   if (!std::getline(in, header)) fail(1, "the file is empty; it starts with the header " + joined(columns));
+  // A spreadsheet's UTF-8 byte order mark: invisible in the message that refused the header.
+  if (header.compare(0, 3, "\xEF\xBB\xBF") == 0) header.erase(0, 3);
   auto with = columns;
   with.push_back(extra);
   const auto names = split(header);

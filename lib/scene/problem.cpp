@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <numeric>
 #include <stdexcept>
@@ -20,6 +21,8 @@
 
 namespace perinom {
 namespace {
+
+namespace fs = std::filesystem;
 
 using detail::BoundaryData;
 using detail::couple_to_faces;
@@ -74,6 +77,9 @@ void check_body_size(const Body& body, const Scene& s) {
 /// The particles (and facets, and groups) of a mesh or point file; errors name the key.
 Body read_body(const Scene& s) {
   const BodyFiles& f = s.body_files;
+  // A folder opens as a stream and reads as an empty file: said as what it is.
+  for (const auto& [file, where] : {std::pair{f.mesh, f.where}, {f.points, f.where}, {f.facets, f.facets_where}})
+    if (!file.empty() && fs::is_directory(file)) throw InputError(where + ": " + file + " is a folder, not a file");
   Body body;
   try {
     if (!f.mesh.empty()) body = mesh_body(read_gmsh(f.mesh), s.dim, s.geometry.thickness);
@@ -86,7 +92,7 @@ Body read_body(const Scene& s) {
     try {
       read_facet_file(f.facets, body);
     } catch (const InputError& e) {
-      throw InputError(s.source + ": geometry.facets: " + f.facets + ": " + e.what());
+      throw InputError(f.facets_where + ": " + f.facets + ": " + e.what());
     }
   }
   if (f.mesh.empty()) set_mean_size(body, s.geometry.thickness);

@@ -45,6 +45,7 @@ void read_body_files(Fields& f, Scene& s) {
     const std::string facets = f.text("facets");
     if (facets.empty()) f.fail("facets", "must name a file");
     b.facets = scene_relative(s.source, facets);
+    b.facets_where = detail::where(s.source, f.node("facets")) + f.key("facets");
   }
   if (f.has("holes")) f.fail("holes", std::string("cut a box; geometry.") + key + " carries its own shape");
 }

@@ -214,3 +214,31 @@ TEST_CASE("point volumes that do not fit the positions are warned of, naming the
   INFO("run stdout: " << r.out);
   CHECK(r.out.find("warning: geometry.points: sub/cloud.csv: the volumes do not fit") != std::string::npos);
 }
+
+TEST_CASE("body files: a folder, a byte order mark, a mesh off its plane and a facet error are said plainly", "[cli][mesh]") {
+  SECTION("a folder named as the mesh") {
+    const MeshDir d(with(mesh_scene, "mesh: square.msh", "mesh: folder.msh"));
+    fs::create_directories(d.dir.path / "sub" / "folder.msh");
+    require_one_clear_error(d.check(), {"geometry.mesh", "folder.msh is a folder, not a file"});
+  }
+  SECTION("a point file with a UTF-8 byte order mark is read") {
+    const MeshDir d(points_scene, {{"cloud.csv", "\xEF\xBB\xBF" + points_csv()}});
+    const Outcome o = d.check();
+    INFO("stderr: " << o.err);
+    CHECK(o.exit_code == 0);
+  }
+  SECTION("a 2-D mesh whose z varies by 2e-9 m says by how much") {
+    std::string mesh = slurp(PERINOM_SOURCE_DIR "/tests/data/square_tri.msh");
+    const auto at = mesh.find("\n0.016 0 0\n");
+    REQUIRE(at != std::string::npos);
+    mesh.replace(at, 11, "\n0.016 0 2e-9\n");
+    const MeshDir d(with(mesh_scene, "mesh: square.msh", "mesh: noisy.msh"), {{"noisy.msh", mesh}});
+    require_one_clear_error(d.check(), {"z = const", "z spans 0 to 2e-09 m, more than 1e-12 of its extent 0.016 m"});
+  }
+  SECTION("a facet file's error names the scene's line") {
+    const std::string scene = with(with(points_scene, "  points: cloud.csv\n", "  points: cloud.csv\n  facets: facets.csv\n"),
+                                   "model: {formulation: classical, operator_order: 1}\n", "");
+    const MeshDir d(scene, {{"cloud.csv", points_csv()}, {"facets.csv", "particle,area\n"}});
+    require_one_clear_error(d.check(), {"sub/scene.yaml:5: geometry.facets: sub/facets.csv: line 1"});
+  }
+}

@@ -27,7 +27,8 @@ struct BodyFiles {
   std::string mesh;    ///< a gmsh .msh file (format 4.1, ASCII)
   std::string points;  ///< a CSV of particles (x, y[, z], volume)
   std::string facets;  ///< a CSV of boundary facets for `points`
-  std::string where;   ///< "file:line: geometry.mesh" (or .points, .facets) for messages
+  std::string where;   ///< "file:line: geometry.mesh" (or .points) for messages
+  std::string facets_where;  ///< "file:line: geometry.facets" for messages
   bool given() const { return !mesh.empty() || !points.empty(); }
 };
 
