@@ -19,6 +19,7 @@
 #include "point_volume_note.hpp"
 #include "stability_check.hpp"
 #include "support_check.hpp"
+#include "thick_plate_note.hpp"
 #include "thin_body_note.hpp"
 
 namespace perinom::cli {
@@ -95,6 +96,7 @@ int check(const Options& opt) {
   if (const std::string volumes = point_volume_warning(p); !volumes.empty())
     std::printf("  volumes         warning: %s\n", volumes.c_str());
   if (const std::string thin = thin_body_note(p); !thin.empty()) std::printf("  thin            %s\n", thin.c_str());
+  if (const std::string thick = thick_plate_note(p); !thick.empty()) std::printf("  thick           %s\n", thick.c_str());
   if (const std::string locking = locking_warning(p); !locking.empty())
     std::printf("  locking         warning: %s\n", locking.c_str());
   if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())

@@ -6,6 +6,7 @@
 #include "diagnostics.hpp"
 #include "layer_support_note.hpp"
 #include "point_volume_note.hpp"
+#include "thick_plate_note.hpp"
 #include "thin_body_note.hpp"
 
 namespace perinom::cli {
@@ -53,6 +54,7 @@ std::string plastic_collapse_note(const Problem& p) {
 void print_body_notes(const Problem& p) {
   if (const std::string volumes = point_volume_warning(p); !volumes.empty()) warn("%s", volumes.c_str());
   if (const std::string thin = thin_body_note(p); !thin.empty()) note("%s", thin.c_str());
+  if (const std::string thick = thick_plate_note(p); !thick.empty()) note("%s", thick.c_str());
   if (const std::string locking = locking_warning(p); !locking.empty())
     warn("%s", locking.c_str());
   if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())

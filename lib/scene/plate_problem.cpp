@@ -95,10 +95,11 @@ Families plate_families(const Scene& s, const PlateFrame& frame, const PlateClou
 
 std::unique_ptr<ThinPlateModel> plate_model(const Scene& s, PlateCloud plate, const Families& families,
                                             const ThinPlateOptions& opt) {
+  const PointCloud lattice = plate.cloud;  // (for the message: the plate is moved into the model)
   try {
     return std::make_unique<ThinPlateModel>(std::move(plate), families, opt);
   } catch (const InputError& e) {
-    throw InputError(s.source + ": " + horizon_key(s) + ": " + e.what());
+    throw InputError(horizon_error(s, lattice, e.what()));
   }
 }
 

@@ -211,13 +211,29 @@ std::string horizon_key(const Scene& s) {
   return s.discretization.horizon_neighbors > 0 ? "discretization.horizon.neighbors" : "discretization.horizon.ratio";
 }
 
+std::string horizon_error(const Scene& s, const PointCloud& cloud, const std::string& what) {
+  std::string text = s.source + ": " + horizon_key(s) + ": " + what;
+  const double dx = s.discretization.dx;
+  if (s.body_files.given() || s.discretization.horizon_neighbors > 0 || cloud.spacing.empty()) return text;
+  const double widest = *std::max_element(cloud.spacing.begin(), cloud.spacing.end());
+  if (!(widest > dx * (1.0 + 1e-9))) return text;
+  char hint[400];
+  std::snprintf(hint, sizeof hint,
+                "; the lattice's spacing is %g m (the box's sides in whole cells), more than dx = %g m, so delta = "
+                "ratio x dx = %g m spans %.4g of its spacings, not %g: a dx that divides the box's sides, or a larger "
+                "ratio",
+                widest, dx, s.discretization.horizon_ratio * dx, s.discretization.horizon_ratio * dx / widest,
+                s.discretization.horizon_ratio);
+  return text + hint;
+}
+
 Families scene_families(const Scene& s, const PointCloud& cloud) {
   try {
     return s.discretization.horizon_neighbors > 0
                ? knn_families(cloud, s.discretization.horizon_neighbors)
                : radius_families(cloud, s.discretization.horizon_ratio * s.discretization.dx);
   } catch (const InputError& e) {
-    throw InputError(s.source + ": " + horizon_key(s) + ": " + e.what());
+    throw InputError(horizon_error(s, cloud, e.what()));
   }
 }
 
@@ -327,7 +343,6 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   Problem p;
   p.scene = s;
   if (timer) timer->start("discretization");
-  const std::string horizon = horizon_key(s);
   const Body body = scene_body(s, p);
   const Families families = scene_families(s, p.cloud);
   p.bonds = families.bonds();
@@ -351,7 +366,7 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
     model = std::make_unique<CorrespondenceModel>(p.cloud, families, s.material, opt, std::move(surface),
                                                   std::move(facets));
   } catch (const InputError& e) {
-    throw InputError(s.source + ": " + horizon + ": " + e.what());
+    throw InputError(horizon_error(s, p.cloud, e.what()));
   }
   // Precracks cut their bonds as a broken bond is cut (the reader allows them with the
   // classical formulation only).

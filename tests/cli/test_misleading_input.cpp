@@ -224,3 +224,12 @@ TEST_CASE("a --set with no value, or a key with a space, is refused naming the -
     CHECK(o.exit_code == 0);
   }
 }
+
+TEST_CASE("a horizon that a lattice's wider spacing shrinks says so, beside the particle", "[cli]") {
+  // dx 12.4 mm on the plate's 0.5 m side: 40 cells of 12.5 mm, and delta = 2.015 dx spans
+  // 1.999 spacings: the second ring lost, and the message blamed a ghost node alone.
+  ScratchDir dir;
+  const Outcome o = perinom(dir, "check '" PERINOM_SOURCE_DIR "/examples/thin_plate_clamped.yaml' --set discretization.dx=0.0124");
+  require_one_clear_error(o, {"discretization.horizon.ratio", "the lattice's spacing is 0.0125 m", "more than dx = 0.0124 m",
+                              "spans 1.999 of its spacings, not 2.015: a dx that divides the box's sides"});
+}

@@ -44,3 +44,17 @@ TEST_CASE("a ligament 3 particles across between a hole and a face gets the note
   CHECK(whole.exit_code == 0);
   CHECK(whole.out.find("particles across") == std::string::npos);
 }
+
+TEST_CASE("a thin plate thicker than a tenth of its side gets the thick-plate note", "[cli]") {
+  // t = 1 m on the 0.5 m plate reported the Kirchhoff deflection with no word.
+  ScratchDir dir;
+  const std::string scene = "'" PERINOM_SOURCE_DIR "/examples/thin_plate_clamped.yaml'";
+  const Outcome thick = perinom(dir, "check " + scene + " --set geometry.thickness=0.06");
+  INFO("stdout: " << thick.out << "\nstderr: " << thick.err);
+  REQUIRE(thick.exit_code == 0);
+  CHECK(thick.out.find("thick           geometry.thickness 0.06 m is 0.12 of the plate's shorter side (0.5 m)") !=
+        std::string::npos);
+  const Outcome thin = perinom(dir, "check " + scene + " --set geometry.thickness=0.04");
+  REQUIRE(thin.exit_code == 0);
+  CHECK(thin.out.find("thick  ") == std::string::npos);
+}

@@ -72,6 +72,11 @@ BoundProbe bind_probe(const ProbeSpec& spec, const PointCloud& cloud, const BoxG
 
 /// "discretization.horizon.neighbors" or "discretization.horizon.ratio", for messages.
 std::string horizon_key(const Scene& scene);
+/// "SOURCE: <horizon_key>: what", and when a radius horizon is over a lattice whose spacing
+/// the box's whole cells made larger than dx, why that matters: delta = ratio x dx then spans
+/// fewer spacings than the ratio says (a plate at dx 12.4 mm on a 0.5 m side, spacing 12.5 mm,
+/// lost its second ring and blamed a ghost node).
+std::string horizon_error(const Scene& scene, const PointCloud& cloud, const std::string& what);
 /// The families discretization.horizon asks for on the cloud; errors name that key.
 Families scene_families(const Scene& scene, const PointCloud& cloud);
 
