@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "classical_mesh_note.hpp"
+#include "lattice_hole_note.hpp"
 #include "layer_support_note.hpp"
 #include "locking_warning.hpp"
 #include "memory_estimate.hpp"
@@ -97,6 +98,7 @@ int check(const Options& opt) {
     std::printf("  volumes         warning: %s\n", volumes.c_str());
   if (const std::string thin = thin_body_note(p); !thin.empty()) std::printf("  thin            %s\n", thin.c_str());
   if (const std::string thick = thick_plate_note(p); !thick.empty()) std::printf("  thick           %s\n", thick.c_str());
+  if (const std::string hole = lattice_hole_note(p); !hole.empty()) std::printf("  hole            %s\n", hole.c_str());
   if (const std::string locking = locking_warning(p); !locking.empty())
     std::printf("  locking         warning: %s\n", locking.c_str());
   if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())

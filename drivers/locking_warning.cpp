@@ -4,6 +4,7 @@
 
 #include "classical_mesh_note.hpp"
 #include "diagnostics.hpp"
+#include "lattice_hole_note.hpp"
 #include "layer_support_note.hpp"
 #include "point_volume_note.hpp"
 #include "thick_plate_note.hpp"
@@ -55,6 +56,7 @@ void print_body_notes(const Problem& p) {
   if (const std::string volumes = point_volume_warning(p); !volumes.empty()) warn("%s", volumes.c_str());
   if (const std::string thin = thin_body_note(p); !thin.empty()) note("%s", thin.c_str());
   if (const std::string thick = thick_plate_note(p); !thick.empty()) note("%s", thick.c_str());
+  if (const std::string hole = lattice_hole_note(p); !hole.empty()) note("%s", hole.c_str());
   if (const std::string locking = locking_warning(p); !locking.empty())
     warn("%s", locking.c_str());
   if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())

@@ -54,6 +54,14 @@ NearestParticle nearest_particle(const PointCloud& cloud, const double* point) {
   return {static_cast<ParticleId>(arg), std::sqrt(best), std::sqrt(spacing2)};
 }
 
+std::vector<ParticleId> nearest_particles(const PointCloud& cloud, const double* point, const NearestParticle& n) {
+  const double reach = n.distance + 1e-9 * (std::isfinite(n.spacing) ? n.spacing : n.distance);
+  std::vector<ParticleId> ids;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (std::sqrt(distance2(cloud, i, point)) <= reach) ids.push_back(static_cast<ParticleId>(i));
+  return ids;
+}
+
 std::string outside_body(const NearestParticle& n, const PointCloud& cloud) {
   if (!(n.distance > 2.0 * n.spacing)) return "";
   std::ostringstream msg;
@@ -83,7 +91,7 @@ std::vector<ParticleId> select(const Region& region, const BoxGeometry& box,
   std::vector<ParticleId> ids;
   const int d = cloud.dim;
   if (region.is_point) {
-    if (cloud.size() > 0) ids.push_back(nearest_particle(cloud, region.point.data()).id);
+    if (cloud.size() > 0) ids = nearest_particles(cloud, region.point.data(), nearest_particle(cloud, region.point.data()));
     return ids;
   }
   for (std::size_t i = 0; i < cloud.size(); ++i) {

@@ -58,3 +58,17 @@ TEST_CASE("a thin plate thicker than a tenth of its side gets the thick-plate no
   REQUIRE(thin.exit_code == 0);
   CHECK(thin.out.find("thick  ") == std::string::npos);
 }
+
+TEST_CASE("a hole cut from the lattice gets the note that its edge stress does not converge", "[cli]") {
+  // A plate with a hole read sigma_xx 2.37 MPa at the edge (Kirsch about 3) with no word.
+  ScratchDir dir;
+  const Outcome o = perinom(dir, "check '" PERINOM_SOURCE_DIR "/examples/plate_with_hole.yaml'");
+  INFO("stdout: " << o.out << "\nstderr: " << o.err);
+  REQUIRE(o.exit_code == 0);
+  CHECK(o.out.find("hole            geometry.holes: a hole cut from the lattice is a staircase") != std::string::npos);
+  CHECK(o.out.find("use geometry.mesh") != std::string::npos);
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  const Outcome none = perinom(dir, "check scene.yaml");
+  REQUIRE(none.exit_code == 0);
+  CHECK(none.out.find("geometry.holes: a hole") == std::string::npos);
+}

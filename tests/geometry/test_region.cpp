@@ -50,3 +50,26 @@ TEST_CASE("one close neighbour does not shrink the spacing a far point is measur
   CHECK(n.spacing == Approx(1.0));  // its second nearest: a lattice neighbour, not the sliver
   CHECK(outside_body(n, c).empty());  // 1.5 spacings away: within two, not refused (0.01 would give 150)
 }
+
+TEST_CASE("a point midway between particles selects all of them, whatever rounding says", "[geometry]") {
+  // The notched beam's supports at x = 25 and 150 mm fall midway between two columns at
+  // every spacing; rounding chose one, and the span was 122.5 mm at dx = 2.5 mm, 125 at 1.25.
+  for (const double dx : {0.0025, 0.0025 / 1.4, 0.00125, 0.00125 / 1.4}) {
+    BoxGeometry box;
+    box.dim = 2;
+    box.max = {0.175, 0.05, 0.0};
+    const PointCloud c = make_lattice(box, dx);
+    for (const double at : {0.025, 0.150}) {
+      const std::array<double, 3> p{at, 0.0, 0.0};
+      const std::vector<ParticleId> ids = nearest_particles(c, p.data(), nearest(c, p));
+      REQUIRE(ids.size() == 2);
+      const double x0 = c.x[2 * ids[0]], x1 = c.x[2 * ids[1]];
+      CHECK(0.5 * (x0 + x1) == Approx(at).margin(1e-12));  // the pair acts at the point
+      CHECK(c.x[2 * ids[0] + 1] == c.x[2 * ids[1] + 1]);
+    }
+    // A point on a particle selects it alone, and a cell corner inside the body four.
+    const std::array<double, 3> on{c.x[0], c.x[1], 0.0}, corner{c.x[0] + 0.5 * c.spacing[0], c.x[1] + 0.5 * c.spacing[1], 0.0};
+    CHECK(nearest_particles(c, on.data(), nearest(c, on)) == std::vector<ParticleId>{0});
+    CHECK(nearest_particles(c, corner.data(), nearest(c, corner)).size() == 4);
+  }
+}

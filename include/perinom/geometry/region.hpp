@@ -36,8 +36,8 @@ struct Region {
 };
 
 /// The particles a side, box or point region selects (not a group: see group_particles). A
-/// side selects the layer within one spacing of the face; a point the nearest particle
-/// (reference positions; the lowest index on a tie).
+/// side selects the layer within one spacing of the face; a point its nearest particles
+/// (nearest_particles).
 std::vector<ParticleId> select(const Region& region, const BoxGeometry& box,
                                const PointCloud& cloud);
 
@@ -50,6 +50,13 @@ struct NearestParticle {
   double spacing = 0.0;
 };
 NearestParticle nearest_particle(const PointCloud& cloud, const double* point);
+
+/// Every particle as near the point as the nearest (`nearest`, of nearest_particle), to 1e-9
+/// of its spacing, in index order: one, or on a tie all of them (a point midway between two
+/// lattice columns, a corner of four cells), so that what holds them acts at the point. One
+/// chosen by rounding moved the notched beam's point supports half a spacing each, its span
+/// 2% short at dx = 2.5 mm and exact at 1.25 mm.
+std::vector<ParticleId> nearest_particles(const PointCloud& cloud, const double* point, const NearestParticle& nearest);
 
 /// A point on the body or its surface lies within about a spacing of its nearest particle
 /// (0.87 of one at a 3-D lattice's corner). Empty when it lies within two; otherwise what is
