@@ -51,7 +51,10 @@ NearestParticle nearest_particle(const PointCloud& cloud, const double* point) {
   double spacing2 = INFINITY;
   for (const double c : closest)
     if (c < INFINITY) spacing2 = c;  // a cloud of fewer particles: its farthest
-  return {static_cast<ParticleId>(arg), std::sqrt(best), std::sqrt(spacing2)};
+  NearestParticle n{static_cast<ParticleId>(arg), std::sqrt(best), std::sqrt(spacing2)};
+  // On a tie (to 1e-9 of the spacing) the lowest index, not whichever rounding put nearer.
+  n.id = nearest_particles(cloud, point, n).front();
+  return n;
 }
 
 std::vector<ParticleId> nearest_particles(const PointCloud& cloud, const double* point, const NearestParticle& n) {
@@ -91,7 +94,7 @@ std::vector<ParticleId> select(const Region& region, const BoxGeometry& box,
   std::vector<ParticleId> ids;
   const int d = cloud.dim;
   if (region.is_point) {
-    if (cloud.size() > 0) ids = nearest_particles(cloud, region.point.data(), nearest_particle(cloud, region.point.data()));
+    if (cloud.size() > 0) ids.push_back(nearest_particle(cloud, region.point.data()).id);
     return ids;
   }
   for (std::size_t i = 0; i < cloud.size(); ++i) {

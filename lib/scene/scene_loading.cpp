@@ -87,7 +87,7 @@ std::vector<ParticleId> select_region(const Region& region, const Scene& s, cons
     const std::string outside = outside_body(nearest, cloud);
     if (!outside.empty())
       throw InputError(where + ".region.point: the point " + outside + "; a point region holds the particle nearest its point");
-    return nearest_particles(cloud, region.point.data(), nearest);
+    return {nearest.id};
   }
   const std::vector<ParticleId> ids = select(region, s.geometry, cloud);
   if (ids.empty()) throw InputError(where + ".region: selects no particle");

@@ -51,25 +51,45 @@ TEST_CASE("one close neighbour does not shrink the spacing a far point is measur
   CHECK(outside_body(n, c).empty());  // 1.5 spacings away: within two, not refused (0.01 would give 150)
 }
 
-TEST_CASE("a point midway between particles selects all of them, whatever rounding says", "[geometry]") {
+TEST_CASE("a point midway between particles takes the lowest index, whatever rounding says", "[geometry]") {
   // The notched beam's supports at x = 25 and 150 mm fall midway between two columns at
-  // every spacing; rounding chose one, and the span was 122.5 mm at dx = 2.5 mm, 125 at 1.25.
+  // every spacing; rounding chose a side, and the span was 122.5 mm at dx = 2.5 mm, 125 at
+  // 1.25. The lowest index puts both half a spacing to the left: the span 125 at every dx.
   for (const double dx : {0.0025, 0.0025 / 1.4, 0.00125, 0.00125 / 1.4}) {
     BoxGeometry box;
     box.dim = 2;
     box.max = {0.175, 0.05, 0.0};
     const PointCloud c = make_lattice(box, dx);
-    for (const double at : {0.025, 0.150}) {
-      const std::array<double, 3> p{at, 0.0, 0.0};
-      const std::vector<ParticleId> ids = nearest_particles(c, p.data(), nearest(c, p));
+    std::array<double, 2> at{};
+    for (int k = 0; k < 2; ++k) {
+      const std::array<double, 3> p{k == 0 ? 0.025 : 0.150, 0.0, 0.0};
+      const NearestParticle n = nearest(c, p);
+      const std::vector<ParticleId> ids = nearest_particles(c, p.data(), n);
       REQUIRE(ids.size() == 2);
-      const double x0 = c.x[2 * ids[0]], x1 = c.x[2 * ids[1]];
-      CHECK(0.5 * (x0 + x1) == Approx(at).margin(1e-12));  // the pair acts at the point
-      CHECK(c.x[2 * ids[0] + 1] == c.x[2 * ids[1] + 1]);
+      CHECK(n.id == ids[0]);
+      CHECK(c.x[2 * ids[0]] < c.x[2 * ids[1]]);
+      at[k] = c.x[2 * n.id];
     }
-    // A point on a particle selects it alone, and a cell corner inside the body four.
+    CHECK(at[1] - at[0] == Approx(0.125).margin(1e-12));
+    // A point on a particle is that particle alone, and a cell corner inside the body is
+    // equally near four.
     const std::array<double, 3> on{c.x[0], c.x[1], 0.0}, corner{c.x[0] + 0.5 * c.spacing[0], c.x[1] + 0.5 * c.spacing[1], 0.0};
     CHECK(nearest_particles(c, on.data(), nearest(c, on)) == std::vector<ParticleId>{0});
     CHECK(nearest_particles(c, corner.data(), nearest(c, corner)).size() == 4);
+  }
+}
+
+TEST_CASE("a tie is broken alike in metres and in millimetres", "[geometry]") {
+  // A scene in mm took another particle than the same scene in m (rounding broke the tie).
+  for (const double scale : {1.0, 1e-3, 1e3}) {
+    BoxGeometry box;
+    box.dim = 2;
+    box.max = {0.1 * scale, 0.1 * scale, 0.0};
+    const PointCloud c = make_lattice(box, 0.004 * scale);
+    const std::array<double, 3> p{0.016 * scale, 0.072 * scale, 0.0};  // a corner of four cells
+    const NearestParticle n = nearest(c, p);
+    CHECK(nearest_particles(c, p.data(), n).size() == 4);
+    CHECK(c.x[2 * n.id] / scale == Approx(0.014));
+    CHECK(c.x[2 * n.id + 1] / scale == Approx(0.070));
   }
 }

@@ -36,14 +36,18 @@ struct Region {
 };
 
 /// The particles a side, box or point region selects (not a group: see group_particles). A
-/// side selects the layer within one spacing of the face; a point its nearest particles
-/// (nearest_particles).
+/// side selects the layer within one spacing of the face; a point the nearest particle
+/// (nearest_particle: the lowest index on a tie).
 std::vector<ParticleId> select(const Region& region, const BoxGeometry& box,
                                const PointCloud& cloud);
 
-/// The particle nearest a point (reference positions; the lowest index on a tie), its
-/// distance from the point, and that particle's spacing: the distance to its d-th nearest
-/// neighbour (a lattice's spacing; in a smaller cloud its farthest; infinite in a cloud of one).
+/// The particle nearest a point (reference positions; the lowest index on a tie, to 1e-9 of
+/// the spacing), its distance from the point, and that particle's spacing: the distance to its
+/// d-th nearest neighbour (a lattice's spacing; in a smaller cloud its farthest; infinite in a
+/// cloud of one). Rounding broke ties before: the notched beam's point supports, midway between
+/// two columns at every spacing, landed on different sides, its span 122.5 mm at dx = 2.5 mm
+/// and 125 at 1.25 (now 125 at every spacing, both supports half a spacing to the left), and a
+/// scene in mm chose another particle than the same scene in m.
 struct NearestParticle {
   ParticleId id = 0;
   double distance = 0.0;
@@ -53,9 +57,7 @@ NearestParticle nearest_particle(const PointCloud& cloud, const double* point);
 
 /// Every particle as near the point as the nearest (`nearest`, of nearest_particle), to 1e-9
 /// of its spacing, in index order: one, or on a tie all of them (a point midway between two
-/// lattice columns, a corner of four cells), so that what holds them acts at the point. One
-/// chosen by rounding moved the notched beam's point supports half a spacing each, its span
-/// 2% short at dx = 2.5 mm and exact at 1.25 mm.
+/// lattice columns, a corner of four cells).
 std::vector<ParticleId> nearest_particles(const PointCloud& cloud, const double* point, const NearestParticle& nearest);
 
 /// A point on the body or its surface lies within about a spacing of its nearest particle
