@@ -79,8 +79,11 @@ PencilInertia pencil_inertia(const Sparse& K, const Sparse& M, int steps) {
   } else {
     ldlt.compute(K);  // AMD ordering
     if (ldlt.info() != Eigen::Success) throw SolveError("stability check: the sparse LDL^T of the stiffness failed");
+    // A rigid mode the supports leave free has a pivot that is rounding, of either sign: a
+    // free 2-D body read "2 negative" and UNSTABLE beside a positive smallest eigenvalue.
     const Vector D = ldlt.vectorD();
-    for (Eigen::Index k = 0; k < D.size(); ++k) out.negative += D[k] < 0.0, out.zero += D[k] == 0.0;
+    const double rounding = kZeroPivot * D.cwiseAbs().maxCoeff();
+    for (Eigen::Index k = 0; k < D.size(); ++k) out.negative += D[k] < -rounding, out.zero += std::abs(D[k]) <= rounding;
     solve_K = [&](const Vector& b) { return Vector(ldlt.solve(b)); };
   }
   // x <- M^-1 K x: the largest eigenvalue, and the most negative one when there is one.

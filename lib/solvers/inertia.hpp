@@ -12,9 +12,12 @@
 
 namespace perinom {
 
+/// A pivot of K's LDL^T within this fraction of the largest is zero (rounding, either sign).
+inline constexpr double kZeroPivot = 1e-10;
+
 struct PencilInertia {
-  long negative = 0;      ///< negative pivots of K: eigenvalues of M^-1 K below zero
-  long zero = 0;          ///< pivots exactly zero (K singular: a rigid mode left free)
+  long negative = 0;      ///< negative pivots of K (below -kZeroPivot of the largest): eigenvalues of M^-1 K below zero
+  long zero = 0;          ///< pivots within kZeroPivot of the largest (K singular: a rigid mode left free)
   bool cholesky = false;  ///< decided by a successful supernodal Cholesky (K positive definite)
   double min_lambda = 0;  ///< the smallest eigenvalue of M^-1 K (1/s^2): shift-invert Lanczos when
                           ///< none is negative, else Lanczos on M^-1 K (its lowest Ritz value)

@@ -19,8 +19,15 @@ namespace perinom {
 using detail::Sparse;
 
 std::string SpectrumReport::verdict() const {
+  char line[320];
+  if (stable() && singular > 0) {
+    std::snprintf(line, sizeof line,
+                  "stable but singular: %zu zero eigenvalues (rigid motions the supports leave free, or a mechanism): "
+                  "no static balance for a load along them",
+                  singular);
+    return line;
+  }
   if (stable()) return "stable";
-  char line[256];
   std::snprintf(line, sizeof line,
                 "UNSTABLE: %zu eigenvalues with negative real part and %zu complex, growth rate %.3e 1/s",
                 negative, complex, growth_rate);

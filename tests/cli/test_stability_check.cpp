@@ -80,3 +80,16 @@ TEST_CASE("a static run with the strong formulation above the size limit says th
   CHECK(o.out.find("the stability check was skipped: 7960 free dofs exceed its limit of 2000") != std::string::npos);
   CHECK(o.err.empty());  // (ADR's NOT converged line is on stdout)
 }
+
+TEST_CASE("a body the supports leave free is singular in the stability check, not unstable", "[cli][stability]") {
+  // Its rigid modes' pivots are rounding of either sign: it read "2 negative" and UNSTABLE
+  // beside a positive smallest eigenvalue.
+  const Outcome o = bar("free_spectrum", "check",
+                        "--spectrum --set discretization.dx=0.004 --set \"boundary=[{region: left, traction: [-1.0e6, 0.0]}, "
+                        "{region: right, traction: [1.0e6, 0.0]}]\"");
+  INFO("stdout: " << o.out << "\nstderr: " << o.err);
+  REQUIRE(o.exit_code == 0);
+  CHECK(o.out.find("negative                    0 (negative pivots of K; 3 zero)") != std::string::npos);
+  CHECK(o.out.find("stable but singular: 3 zero eigenvalues") != std::string::npos);
+  CHECK(o.out.find("UNSTABLE") == std::string::npos);
+}
