@@ -12,6 +12,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -42,6 +44,27 @@ int failed(int code) {
   return code;
 }
 
+/// An option another command reads is bad input here: `run --spectrum` ran no stability
+/// check and `check --out x --keep` ignored both, with exit 0.
+void refuse_foreign_options(const perinom::cli::Options& opt, const std::vector<std::string>& given) {
+  static const std::map<std::string, std::set<std::string>> own = {
+      {"run", {"--out", "--restart", "--set", "--threads", "--keep", "--petsc-options", "--max-memory"}},
+      {"check", {"--set", "--threads", "--max-memory", "--spectrum", "--ranks"}},
+      {"bench", {"--threads", "--dimension", "--n", "--stabilization", "--storage", "--single", "--bonds", "--check"}},
+      {"material-point", {"--threads", "--test", "--substeps", "--out"}}};
+  const auto it = own.find(opt.command);
+  if (it == own.end()) return;  // an unknown command: said after
+  const std::string sub = opt.command == "bench" && !opt.positional.empty() ? opt.positional[0] : "";
+  for (const std::string& a : given) {
+    const bool foreign = !it->second.count(a) || (sub == "force" && a == "--bonds") ||
+                         (sub == "refresh" && (a == "--check" || a == "--storage" || a == "--single" ||
+                                               a == "--stabilization"));
+    if (foreign)
+      throw perinom::InputError("option " + a + " is not an option of 'perinom " + opt.command + (sub.empty() ? "" : " " + sub) +
+                       "' (see perinom --help)");
+  }
+}
+
 /// Ends PETSc (and MPI) however main returns, if a solve started it.
 struct PetscEnd {
   ~PetscEnd() { perinom::finalize_petsc(); }
@@ -69,8 +92,10 @@ int main(int argc, char** argv) {
                        "and 'perinom bench force' are built yet, and mpirun -np " + std::to_string(mpirun_processes()) +
                        " would do the whole work on every rank (run it without mpirun; solver.linear_solver mumps "
                        "or gamg uses PETSc on one rank)");
+    std::vector<std::string> given;  // the options, for the command's own (below)
     for (std::size_t k = 1; k < args.size(); ++k) {
       const std::string& a = args[k];
+      if (a.rfind("--", 0) == 0) given.push_back(a);
       auto value = [&]() -> std::string {
         if (k + 1 >= args.size()) throw InputError("option " + a + " needs a value");
         return args[++k];
@@ -130,6 +155,7 @@ int main(int argc, char** argv) {
       else if (a.rfind("--", 0) == 0) throw InputError("unknown option " + a);
       else opt.positional.push_back(a);
     }
+    refuse_foreign_options(opt, given);
     if (opt.threads > 0) omp_set_num_threads(opt.threads);
     else if (omp_get_max_threads() > cli::max_threads) omp_set_num_threads(cli::max_threads);
     dispatched = true;

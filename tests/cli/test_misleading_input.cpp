@@ -233,3 +233,21 @@ TEST_CASE("a horizon that a lattice's wider spacing shrinks says so, beside the 
   require_one_clear_error(o, {"discretization.horizon.ratio", "the lattice's spacing is 0.0125 m", "more than dx = 0.0124 m",
                               "spans 1.999 of its spacings, not 2.015: a dx that divides the box's sides"});
 }
+
+TEST_CASE("an option of another command is refused, naming it", "[cli]") {
+  // run --spectrum ran no stability check, check --out x --keep ignored both: exit 0.
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  require_one_clear_error(perinom(dir, "run scene.yaml --out out --spectrum"),
+                          {"option --spectrum is not an option of 'perinom run'"});
+  require_one_clear_error(perinom(dir, "check scene.yaml --out x"), {"option --out is not an option of 'perinom check'"});
+  require_one_clear_error(perinom(dir, "material-point --set a=b"),
+                          {"option --set is not an option of 'perinom material-point'"});
+  require_one_clear_error(perinom(dir, "bench refresh --dimension 2 --n 4 --check"),
+                          {"option --check is not an option of 'perinom bench refresh'"});
+  require_one_clear_error(perinom(dir, "bench force --dimension 2 --n 4 --bonds 5"),
+                          {"option --bonds is not an option of 'perinom bench force'"});
+  const Outcome ok = perinom(dir, "check scene.yaml --threads 1 --max-memory 2G");
+  INFO("stderr: " << ok.err);
+  CHECK(ok.exit_code == 0);
+}
