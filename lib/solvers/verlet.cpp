@@ -44,6 +44,7 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
                          : changes && changes->stable_step ? changes->stable_step()
                                                            : stable_time_step(model);
   double dt = resume ? resume->dt : opt.dt > 0.0 ? opt.dt : opt.safety * rep.stable_time_step;
+  rep.changes.final_dt = dt;  // (a run resumed at its last step runs no step: it read 0)
   if (progress && !resume && opt.dt > rep.stable_time_step && rep.stable_time_step > 0.0) {
     char what[400];
     std::snprintf(what, sizeof what,

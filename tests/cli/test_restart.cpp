@@ -361,3 +361,14 @@ TEST_CASE("Newton solves are not checkpointed, and say so", "[cli][checkpoint]")
   require_rejected(with(tiny_scene, "type: adr", "type: newton") + "output: {checkpoint_every: 10}\n",
                    {"output.checkpoint_every", "Newton solves are not checkpointed"});
 }
+
+TEST_CASE("a cracking Verlet run resumed at its last step reports the step it ended at", "[cli][checkpoint][fracture]") {
+  // No step is left to run: final_time_step read 0 ("ended at dt = 0 s").
+  ScratchDir d;
+  const std::string sent = "'" PERINOM_SOURCE_DIR "/examples/sent.yaml' --set solver.steps=800 --set output.vtk_every=400";
+  require_ok(perinom(d, "run " + sent + " --out written --set output.checkpoint_every=800"));
+  const double ended = json_number(slurp(d.path / "written" / "summary.json"), "final_time_step");
+  REQUIRE(ended > 0.0);
+  require_ok(perinom(d, "run " + sent + " --restart written --out resumed --set output.checkpoint_every=800"));
+  CHECK(json_number(slurp(d.path / "resumed" / "summary.json"), "final_time_step") == ended);
+}
