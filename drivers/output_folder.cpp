@@ -178,14 +178,28 @@ RunFolder::~RunFolder() {
   if (names.empty()) {
     fs::remove(file, ignored);
   } else {
-    {
+    bool written = false;
+    if (!fs::exists(tmp, ignored)) {
       std::ofstream f(tmp, std::ios::trunc);
       f << "# the files a perinom run wrote in this folder: the next run here removes them (--keep keeps them),\n"
            "# and no other file\n";
       for (const auto& n : names) f << n << '\n';
+      f.close();
+      written = !f.fail();
     }
-    fs::rename(tmp, file, ignored);
-    fs::remove(tmp, ignored);
+    std::error_code renamed;
+    if (written) fs::rename(tmp, file, renamed);
+    if (written) fs::remove(tmp, ignored);
+    if (!written || renamed) {
+      // A full disk left the manifest empty under its name and the marker gone: the next run
+      // here refused this run's files as no run's. The marker stays instead, and its time
+      // tells the next run which files are this run's.
+      std::fprintf(stderr,
+                   "perinom: warning: the list of this run's files (%s) could not be written (a full disk?); %s "
+                   "stays, so that the next run here still knows them\n",
+                   file.c_str(), marker);
+      return;
+    }
   }
   fs::remove(dir_ + "/" + marker, ignored);
 }

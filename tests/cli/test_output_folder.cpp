@@ -201,3 +201,23 @@ TEST_CASE("a run into a folder another perinom run is writing is refused with ex
   CHECK(third.exit_code == 0);
   require_finished_folder(dir.path / "out");
 }
+
+TEST_CASE("a run that cannot write its list of files leaves its marker, and the next run here still knows them", "[cli]") {
+  // On a full disk the list was left empty under its name and the marker removed: the next
+  // run refused the first one's files as no run's. A folder in the list's .tmp place fails
+  // its write the same way (and was renamed over the list).
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  fs::create_directories(dir.path / "out" / "perinom.files.tmp");
+  const Outcome first = perinom(dir, "run scene.yaml --out out");
+  INFO("first stderr: " << first.err);
+  REQUIRE(first.exit_code == 0);
+  CHECK(first.err.find("could not be written") != std::string::npos);
+  CHECK(fs::exists(dir.path / "out" / "run.incomplete"));
+  CHECK_FALSE(fs::exists(dir.path / "out" / "perinom.files"));
+  fs::remove(dir.path / "out" / "perinom.files.tmp");
+  const Outcome second = perinom(dir, "run scene.yaml --out out");
+  INFO("second stderr: " << second.err);
+  CHECK(second.exit_code == 0);
+  require_finished_folder(dir.path / "out");
+}
