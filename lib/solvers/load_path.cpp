@@ -349,7 +349,9 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
           if (r.rounds >= opt.max_rounds)
             throw SolveError(where(stage, int(k), step) + ": bonds still breaking after " + std::to_string(r.rounds) +
                              " balances (solver.max_rounds): " + std::to_string(r.broken) + " broke in this step, " +
-                             std::to_string(due) + " more were due");
+                             std::to_string(due) +
+                             " more were due (counted from each particle: a bond due at both counts twice here, "
+                             "once in broken_bonds)");
           r.broken += changes->apply(u.data(), fint.data()).count;
           if (follow_density) changes->stable_step(), adr->raise_density(changes->row_sums());
         }
