@@ -184,7 +184,9 @@ std::vector<YAML::Node> Fields::list(const std::string& k) {
 void Fields::finish() const {
   for (const auto& kv : node_) {
     const std::string k = kv.first.as<std::string>();
-    if (!used_.count(k))
+    // null counts as absent, for a key this section reads only elsewhere too (damage.f_t:
+    // null with the stretch criterion read "unknown key").
+    if (!used_.count(k) && !kv.second.IsNull())
       throw InputError(where(source_, kv.first) + key(k) + ": unknown key");
   }
 }

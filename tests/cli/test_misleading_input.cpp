@@ -251,3 +251,14 @@ TEST_CASE("an option of another command is refused, naming it", "[cli]") {
   INFO("stderr: " << ok.err);
   CHECK(ok.exit_code == 0);
 }
+
+TEST_CASE("null counts as absent for a key another setting reads", "[cli]") {
+  // damage.f_t: null with the stretch criterion read "damage.f_t: unknown key".
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  const Outcome o = perinom(dir, "check scene.yaml --set model.formulation=classical --set damage.criterion=stretch "
+                                 "--set damage.s_c=1e-3 --set damage.f_t=null --set solver.type=verlet "
+                                 "--set solver.steps=10");
+  INFO("stderr: " << o.err);
+  CHECK(o.exit_code == 0);
+}
