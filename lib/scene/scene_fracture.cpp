@@ -78,6 +78,11 @@ void read_fracture(Fields& top, Scene& s) {
     }
     if (d.criterion != "stress" && f.has("fracture_energy"))
       f.fail("fracture_energy", "softens the bonds the stress criterion breaks (criterion: stress)");
+    // Another criterion's key: said as such (it read "unknown key").
+    for (const auto& [key, owner] : {std::pair{"s_max", "instability"}, {"s_c", "stretch"}, {"G_c", "stretch"},
+                                     {"f_t", "stress"}})
+      if (d.criterion != owner && f.has(key))
+        f.fail(key, std::string("belongs to criterion: ") + owner + ", not " + d.criterion);
     d.every = f.integer("every", 1);
     if (d.every < 1) f.fail("every", "must be at least 1");
     const std::vector<YAML::Node> keep = f.list("no_fail");

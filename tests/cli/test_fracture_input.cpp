@@ -81,6 +81,10 @@ TEST_CASE("a damage criterion and its parameter are checked by key", "[cli][frac
     const std::string s = with(fracture_scene(), "s_max: 0.02}", "s_max: 0.02, every: 0}");
     require_rejected(s, {"damage.every: must be at least 1"});
   }
+  SECTION("another criterion's key is said to be one, not unknown") {
+    const std::string s = with(fracture_scene(), "s_max: 0.02}", "s_max: 0.02, f_t: 1.0e6}");
+    require_rejected(s, {"damage.f_t: belongs to criterion: stress, not instability"});
+  }
 }
 
 TEST_CASE("damage needs Verlet or a load path, and the classical formulation", "[cli][fracture]") {
