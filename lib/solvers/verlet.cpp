@@ -250,7 +250,9 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
           ++rep.changes.changing_steps;
         }
       }
-      const bool keep_row = step % opt.history_every == 0;
+      // Every history_every steps, and the last: a run of 35 steps at 10 ended its history at
+      // step 30, without the final state's energies and reactions.
+      const bool keep_row = step % opt.history_every == 0 || step == opt.steps;
       if (keep_row) energies(step, t);
       observe(step, t, u);  // part 3: the snapshot writer refuses a non-finite field
       if (keep_row) record(), checked(step, t);

@@ -117,3 +117,14 @@ TEST_CASE("a Verlet run that ends before its ramp_time says how far its loads go
   CHECK(whole.out.find("the loads reached") == std::string::npos);
   CHECK(test_support::json_number(test_support::slurp(whole.dir / "out" / "summary.json"), "load_factor_at_end") == 1.0);
 }
+
+TEST_CASE("a Verlet history ends at the last step, whatever history_every", "[cli][verlet]") {
+  // 35 steps at history_every 10 ended the history at step 30.
+  const Outcome o = bar("last_row", "run", "--out out --set solver.steps=35 --set solver.history_every=10");
+  INFO("stderr: " << o.err);
+  REQUIRE(o.exit_code == 0);
+  const auto rows = history(o.dir / "out" / "history.csv");
+  REQUIRE(rows.size() == 5);  // steps 0, 10, 20, 30 and 35
+  CHECK(rows.back()[0] == 35.0);
+  CHECK(rows[3][0] == 30.0);
+}
