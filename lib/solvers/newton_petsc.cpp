@@ -347,6 +347,21 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
       check(VecCopy(x_start.p, x.p), "VecCopy");
       break;
     }
+    if (reason < 0) {
+      // The iterate SNES stopped at is no balanced state (a free body's was 1.3e8 m off):
+      // the last step's state stays, as for a singular factor.
+      rep.failure = "Newton (PETSc): SNES stopped in load step " + std::to_string(step) + " with " +
+                    SNESConvergedReasons[reason] + "; the last good state is load step " + std::to_string(step - 1);
+      if (reason == SNES_DIVERGED_LINEAR_SOLVE)
+        rep.failure += " (the linear solver " + opt.linear_solver +
+                       " failed: a singular stiffness, e.g. a missing boundary condition, or -ksp_max_it too low)";
+      else if (!model.history())
+        rep.failure += " (a linear elastic body: a stiffness singular to rounding, e.g. a rigid motion the supports "
+                       "leave free, which run warns of before the solve)";
+      if (reason == SNES_DIVERGED_FNORM_NAN) rep.diverged = true, rep.diverged_at = step;
+      check(VecCopy(x_start.p, x.p), "VecCopy");
+      break;
+    }
     // The residual as ADR measures it (as the UMFPACK and KLU path reports it).
     {
       const PetscScalar* a = nullptr;
@@ -396,14 +411,6 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
       sample.iteration = rep.iterations, sample.load_step = step, sample.residual = relative;
       sample.step_converged = true;
       progress->update(sample);
-    }
-    if (reason < 0) {
-      rep.failure = "Newton (PETSc): SNES stopped in load step " + std::to_string(step) + " with " +
-                    SNESConvergedReasons[reason];
-      if (reason == SNES_DIVERGED_LINEAR_SOLVE)
-        rep.failure += " (the linear solver " + opt.linear_solver +
-                       " failed: a singular stiffness, e.g. a missing boundary condition, or -ksp_max_it too low)";
-      break;
     }
     if (opt.after_step) opt.after_step(step, u, iterations, relative);
   }
