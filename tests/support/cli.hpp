@@ -136,6 +136,15 @@ inline void require_rejected(const std::string& scene, std::initializer_list<std
   }
 }
 
+/// Writes the scene and checks that `check` (with `extra`) accepts it: exit code 0.
+inline void require_valid(const std::string& scene, const std::string& extra = "") {
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << scene;
+  const Outcome o = perinom(dir, "check scene.yaml " + extra);
+  INFO("stderr: " << o.err);
+  CHECK(o.exit_code == 0);
+}
+
 /// "scene.yaml:N: key" for the line of `text` in the scene.
 inline std::string at_line(const std::string& scene, const std::string& text, const std::string& key) {
   return "scene.yaml:" + std::to_string(line_of(scene, text)) + ": " + key;
