@@ -17,6 +17,7 @@
 #include "perinom/scene/registry.hpp"
 #include "perinom/solvers/jacobian.hpp"
 #include "perinom/solvers/petsc.hpp"
+#include "point_tie_note.hpp"
 #include "point_volume_note.hpp"
 #include "stability_check.hpp"
 #include "support_check.hpp"
@@ -99,6 +100,7 @@ int check(const Options& opt) {
   if (const std::string thin = thin_body_note(p); !thin.empty()) std::printf("  thin            %s\n", thin.c_str());
   if (const std::string thick = thick_plate_note(p); !thick.empty()) std::printf("  thick           %s\n", thick.c_str());
   if (const std::string hole = lattice_hole_note(p); !hole.empty()) std::printf("  hole            %s\n", hole.c_str());
+  if (const std::string tie = point_tie_note(p); !tie.empty()) std::printf("  tie             %s\n", tie.c_str());
   if (const std::string locking = locking_warning(p); !locking.empty())
     std::printf("  locking         warning: %s\n", locking.c_str());
   if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())

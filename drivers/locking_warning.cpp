@@ -6,6 +6,7 @@
 #include "diagnostics.hpp"
 #include "lattice_hole_note.hpp"
 #include "layer_support_note.hpp"
+#include "point_tie_note.hpp"
 #include "point_volume_note.hpp"
 #include "thick_plate_note.hpp"
 #include "thin_body_note.hpp"
@@ -57,6 +58,7 @@ void print_body_notes(const Problem& p) {
   if (const std::string thin = thin_body_note(p); !thin.empty()) note("%s", thin.c_str());
   if (const std::string thick = thick_plate_note(p); !thick.empty()) note("%s", thick.c_str());
   if (const std::string hole = lattice_hole_note(p); !hole.empty()) note("%s", hole.c_str());
+  if (const std::string tie = point_tie_note(p); !tie.empty()) note("%s", tie.c_str());
   if (const std::string locking = locking_warning(p); !locking.empty())
     warn("%s", locking.c_str());
   if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())

@@ -27,7 +27,7 @@ std::string locking_warning(const Problem& p);
 std::string plastic_collapse_note(const Problem& p);
 
 /// Prints, at the start of a run (serial, or the root of a distributed one), the point
-/// volumes' warning (point_volume_note.hpp), the thin-body note, the thick-plate note, the lattice-hole note, the locking warning, the plastic collapse note and the layer-support note
+/// volumes' warning (point_volume_note.hpp), the thin-body note, the thick-plate note, the lattice-hole note, the point-tie note, the locking warning, the plastic collapse note and the layer-support note
 /// (layer_support_note.hpp) that apply to the problem
 /// (`perinom: note:` / `perinom: warning:`).
 void print_body_notes(const Problem& p);

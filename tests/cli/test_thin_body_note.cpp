@@ -72,3 +72,20 @@ TEST_CASE("a hole cut from the lattice gets the note that its edge stress does n
   REQUIRE(none.exit_code == 0);
   CHECK(none.out.find("geometry.holes: a hole") == std::string::npos);
 }
+
+TEST_CASE("a point region midway between particles says which one holds it", "[cli]") {
+  // The notched beam's supports sit midway between two columns at every spacing: half a
+  // spacing from their points, which nothing said (and rounding once chose the side).
+  ScratchDir dir;
+  const Outcome o = perinom(dir, "check '" PERINOM_SOURCE_DIR "/examples/notched_beam.yaml'");
+  INFO("stdout: " << o.out << "\nstderr: " << o.err);
+  REQUIRE(o.exit_code == 0);
+  CHECK(o.out.find("tie             boundary.0.region.point is as near 2 particles: particle 9 at (0.02375, 0.00125)") !=
+        std::string::npos);
+  CHECK(o.out.find("boundary.1.region.point is as near 2 particles: particle 59 at (0.14875, 0.00125)") !=
+        std::string::npos);
+  // The four-point beam's supports are on particle centres: no note.
+  const Outcome on = perinom(dir, "check '" PERINOM_SOURCE_DIR "/examples/four_point_beam.yaml'");
+  REQUIRE(on.exit_code == 0);
+  CHECK(on.out.find("region.point is as near") == std::string::npos);
+}
