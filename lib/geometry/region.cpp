@@ -53,7 +53,7 @@ NearestParticle nearest_particle(const PointCloud& cloud, const double* point) {
     if (c < INFINITY) spacing2 = c;  // a cloud of fewer particles: its farthest
   NearestParticle n{static_cast<ParticleId>(arg), std::sqrt(best), std::sqrt(spacing2)};
   // On a tie (to 1e-9 of the spacing) the lowest index, not whichever rounding put nearer.
-  n.id = nearest_particles(cloud, point, n).front();
+  if (const std::vector<ParticleId> tied = nearest_particles(cloud, point, n); !tied.empty()) n.id = tied.front();
   return n;
 }
 
