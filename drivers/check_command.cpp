@@ -18,6 +18,7 @@
 #include "perinom/solvers/jacobian.hpp"
 #include "perinom/solvers/petsc.hpp"
 #include "point_tie_note.hpp"
+#include "precrack_row_note.hpp"
 #include "point_volume_note.hpp"
 #include "stability_check.hpp"
 #include "support_check.hpp"
@@ -101,6 +102,7 @@ int check(const Options& opt) {
   if (const std::string thick = thick_plate_note(p); !thick.empty()) std::printf("  thick           %s\n", thick.c_str());
   if (const std::string hole = lattice_hole_note(p); !hole.empty()) std::printf("  hole            %s\n", hole.c_str());
   if (const std::string tie = point_tie_note(p); !tie.empty()) std::printf("  tie             %s\n", tie.c_str());
+  if (const std::string row = precrack_row_note(p); !row.empty()) std::printf("  precrack        %s\n", row.c_str());
   if (const std::string locking = locking_warning(p); !locking.empty())
     std::printf("  locking         warning: %s\n", locking.c_str());
   if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())

@@ -7,6 +7,7 @@
 #include "lattice_hole_note.hpp"
 #include "layer_support_note.hpp"
 #include "point_tie_note.hpp"
+#include "precrack_row_note.hpp"
 #include "point_volume_note.hpp"
 #include "thick_plate_note.hpp"
 #include "thin_body_note.hpp"
@@ -59,6 +60,7 @@ void print_body_notes(const Problem& p) {
   if (const std::string thick = thick_plate_note(p); !thick.empty()) note("%s", thick.c_str());
   if (const std::string hole = lattice_hole_note(p); !hole.empty()) note("%s", hole.c_str());
   if (const std::string tie = point_tie_note(p); !tie.empty()) note("%s", tie.c_str());
+  if (const std::string row = precrack_row_note(p); !row.empty()) note("%s", row.c_str());
   if (const std::string locking = locking_warning(p); !locking.empty())
     warn("%s", locking.c_str());
   if (const std::string plastic = plastic_collapse_note(p); !plastic.empty())

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "perinom/geometry/region.hpp"
+#include "point_text.hpp"
 
 namespace perinom::cli {
 
@@ -23,13 +24,7 @@ std::string point_tie_note(const Problem& p) {
     const NearestParticle n = nearest_particle(p.cloud, at);
     const std::size_t tied = nearest_particles(p.cloud, at, n).size();
     if (tied < 2) continue;
-    const int d = p.cloud.dim;
-    std::string where;
-    for (int a = 0; a < d; ++a) {
-      char c[32];
-      std::snprintf(c, sizeof c, "%s%g", a ? ", " : "", p.cloud.x[n.id * d + a]);
-      where += c;
-    }
+    const std::string where = point_text(p.cloud.point(n.id), p.cloud.dim);
     char text[400];
     std::snprintf(text, sizeof text, "%s%s.region.point is as near %zu particles: particle %lld at (%s) holds it, %g m "
                   "from the point",

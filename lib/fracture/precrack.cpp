@@ -95,4 +95,20 @@ std::vector<std::pair<ParticleId, ParticleId>> bonds_crossing(const PointCloud& 
   return out;
 }
 
+std::vector<ParticleId> particles_on(const PointCloud& cloud, const Precrack& crack) {
+  const int d = cloud.dim;
+  const Frame f = frame_of(crack, d);
+  const double nn = std::sqrt(dot(f.n, f.n, d));
+  const double length = std::sqrt(dot(crack.edge1.data(), crack.edge1.data(), d));
+  std::vector<ParticleId> on;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    double x[3] = {};
+    for (int k = 0; k < d; ++k) x[k] = cloud.point(i)[k] - crack.origin[k];
+    if (std::abs(dot(f.n, x, d)) > kTie * length * nn) continue;
+    const double a = dot(f.r1, x, d), b = d == 2 ? 0.0 : dot(f.r2, x, d);
+    if (a >= -kTie && a <= 1.0 + kTie && b >= -kTie && b <= 1.0 + kTie) on.push_back(static_cast<ParticleId>(i));
+  }
+  return on;
+}
+
 }  // namespace perinom

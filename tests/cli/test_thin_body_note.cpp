@@ -89,3 +89,24 @@ TEST_CASE("a point region midway between particles says which one holds it", "[c
   REQUIRE(on.exit_code == 0);
   CHECK(on.out.find("region.point is as near") == std::string::npos);
 }
+
+TEST_CASE("a precrack laid along a particle row says that it cuts only some bonds", "[cli]") {
+  // A bond with an end on the crack's line is not cut, and rounding puts a particle a hair
+  // off the line on either side: such a crack cut part of what it crosses, with no word.
+  ScratchDir dir;
+  const std::string model = "model: {type: correspondence, formulation: classical}";
+  const std::string on_row = with(tiny_scene, "boundary:", model + "\nprecracks: [{from: [0.0, 0.0055], to: [0.005, 0.0055]}]\nboundary:");
+  std::ofstream(dir.path / "scene.yaml") << on_row;
+  const Outcome o = perinom(dir, "check scene.yaml");
+  INFO("stdout: " << o.out << "\nstderr: " << o.err);
+  REQUIRE(o.exit_code == 0);
+  CHECK(o.out.find("precrack        precracks[0] passes through 5 particles (the first: particle ") != std::string::npos);
+  CHECK(o.out.find("put a crack between particle rows") != std::string::npos);
+  const Outcome run = perinom(dir, "run scene.yaml --out out");
+  REQUIRE(run.exit_code == 0);
+  CHECK(run.out.find("precracks[0] passes through 5 particles") != std::string::npos);
+  std::ofstream(dir.path / "between.yaml") << with(on_row, "[0.0, 0.0055], to: [0.005, 0.0055]", "[0.0, 0.005], to: [0.005, 0.005]");
+  const Outcome between = perinom(dir, "check between.yaml");
+  REQUIRE(between.exit_code == 0);
+  CHECK(between.out.find("passes through") == std::string::npos);
+}

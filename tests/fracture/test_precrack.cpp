@@ -137,3 +137,30 @@ TEST_CASE("mirror notches ending where bonds cross their line cut mirror bonds",
     CHECK_FALSE(crosses(upper, 2, c1, c2));
   }
 }
+
+TEST_CASE("particles_on finds the particles a precrack passes through, and only those", "[fracture]") {
+  // A crack along a particle row cuts only the bonds whose ends are strictly either side:
+  // the row's own bonds stay, which users were not told (precrack_row_note).
+  const PointCloud c = test::lattice(2, 8, 0.0);  // centres at k + 0.5
+  Precrack along;
+  along.origin = {0.0, 3.5, 0.0};
+  along.edge1 = {4.0, 0.0, 0.0};  // through (0.5, 3.5) ... (3.5, 3.5)
+  const std::vector<ParticleId> on = particles_on(c, along);
+  REQUIRE(on.size() == 4);
+  for (const ParticleId i : on) {
+    CHECK(c.point(i)[1] == Approx(3.5));
+    CHECK(c.point(i)[0] < 4.0);
+  }
+  Precrack between = along;
+  between.origin[1] = 4.0;  // between rows
+  CHECK(particles_on(c, between).empty());
+  // In 3-D: a rectangle in the plane z = 2.5 through the particles with x, y < 2.
+  const PointCloud c3 = test::lattice(3, 5, 0.0);
+  Precrack plane;
+  plane.origin = {0.0, 0.0, 2.5};
+  plane.edge1 = {2.0, 0.0, 0.0};
+  plane.edge2 = {0.0, 2.0, 0.0};
+  CHECK(particles_on(c3, plane).size() == 4);
+  plane.origin[2] = 3.0;
+  CHECK(particles_on(c3, plane).empty());
+}

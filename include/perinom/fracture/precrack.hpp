@@ -32,4 +32,10 @@ bool crosses(const Precrack& crack, int dim, const double* p, const double* q);
 std::vector<std::pair<ParticleId, ParticleId>> bonds_crossing(const PointCloud& cloud, const Families& families,
                                                               const std::vector<Precrack>& cracks);
 
+/// The particles lying on the crack (within 1e-9 of its length from its line or plane, their
+/// foot on it): their bonds are not cut, and for a particle that rounding puts a hair off the
+/// line the sign test decides its side, so a crack laid along a particle row cuts only some
+/// bonds. Ascending. Throws std::invalid_argument as bonds_crossing does.
+std::vector<ParticleId> particles_on(const PointCloud& cloud, const Precrack& crack);
+
 }  // namespace perinom
