@@ -243,17 +243,53 @@ void configure(SNES snes, Mat J, const Reduced& sys, const NewtonOptions& opt) {
   check(SNESSetFromOptions(snes), "SNESSetFromOptions");
 }
 
+/// The MUMPS factor of the last linear solve, or nullptr (another solver, or none yet).
+Mat mumps_factor(SNES snes, const NewtonOptions& opt) {
+  if (opt.linear_solver != "mumps") return nullptr;
+  KSP ksp = nullptr;
+  PC pc = nullptr;
+  Mat F = nullptr;
+  if (SNESGetKSP(snes, &ksp) || KSPGetPC(ksp, &pc) || PCFactorGetMatrix(pc, &F)) return nullptr;
+  return F;
+}
+
+/// MUMPS's INFOG(1) after the last factorization (0: fine, or not MUMPS).
+PetscInt mumps_status(SNES snes, const NewtonOptions& opt) {
+  PetscInt status = 0;
+  const Mat F = mumps_factor(snes, opt);
+  return F && !MatMumpsGetInfog(F, 1, &status) ? status : 0;
+}
+
+/// How many times a load step factors again after MUMPS ran out of workspace.
+constexpr int kWidenings = 3;
+
+/// When MUMPS's last factorization ran out of workspace (INFOG(1) -8, -9, -14, -17 or -20:
+/// its analysis's estimate leaves out the pivots it delays, which a saddle point's zero block
+/// makes: a 3-D block held at: face failed so on 2 and 3 ranks at the default 20%, solved at
+/// 40%), doubles ICNTL(14), the room added to the estimate, and drops the factor, so that the
+/// next linear solve analyses and factors anew with it (a failed factor is not factored again
+/// in place); returns the new room, or 0 for another failure.
+PetscInt widen_mumps_workspace(SNES snes, const NewtonOptions& opt) {
+  const PetscInt status = mumps_status(snes, opt);
+  if (status != -8 && status != -9 && status != -14 && status != -17 && status != -20) return 0;
+  PetscInt room = 0;
+  check(MatMumpsGetIcntl(mumps_factor(snes, opt), 14, &room), "MatMumpsGetIcntl");
+  room = std::max<PetscInt>(2 * room, 20);
+  check(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_14", std::to_string(room).c_str()), "PetscOptionsSetValue");
+  KSP ksp = nullptr;
+  check(SNESGetKSP(snes, &ksp), "SNESGetKSP");
+  check(KSPReset(ksp), "KSPReset");
+  return room;
+}
+
 /// MUMPS's count of null pivots in the last factorization, or -1 when it stopped on a
 /// numerically singular matrix (INFOG(1) = -10, as a Cholesky of one does); 0 otherwise and
 /// for another solver.
 PetscInt null_pivots(SNES snes, const NewtonOptions& opt) {
-  if (opt.linear_solver != "mumps") return 0;
-  KSP ksp = nullptr;
-  PC pc = nullptr;
-  Mat F = nullptr;
-  PetscInt count = 0, status = 0;
-  if (SNESGetKSP(snes, &ksp) || KSPGetPC(ksp, &pc) || PCFactorGetMatrix(pc, &F) || !F) return 0;
-  if (!MatMumpsGetInfog(F, 1, &status) && status == -10) return -1;
+  const Mat F = mumps_factor(snes, opt);
+  PetscInt count = 0;
+  if (!F) return 0;
+  if (mumps_status(snes, opt) == -10) return -1;
   return MatMumpsGetInfog(F, 28, &count) ? 0 : count;
 }
 
@@ -328,18 +364,30 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
   Owned<Vec, VecDestroy> x_start;
   check(VecDuplicate(x.p, &x_start.p), "VecDuplicate");
   for (int step = 1; step <= opt.load_steps; ++step) {
-    if (opt.before_step) opt.before_step(step);
     check(VecCopy(x.p, x_start.p), "VecCopy");
     sys.s = static_cast<double>(step) / opt.load_steps;
-    const PetscErrorCode solved = SNESSolve(snes.p, nullptr, x.p);
-    if (sys.error) std::rethrow_exception(sys.error);
-    check(solved, "SNESSolve");
     PetscInt iterations = 0, linear = 0;
     SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
-    SNESGetIterationNumber(snes.p, &iterations);
-    SNESGetLinearSolveIterations(snes.p, &linear);
-    SNESGetConvergedReason(snes.p, &reason);
-    rep.iterations += iterations;
+    for (int widened = 0;; ++widened) {
+      if (opt.before_step) opt.before_step(step);
+      const PetscErrorCode solved = SNESSolve(snes.p, nullptr, x.p);
+      if (sys.error) std::rethrow_exception(sys.error);
+      check(solved, "SNESSolve");
+      SNESGetIterationNumber(snes.p, &iterations);
+      SNESGetLinearSolveIterations(snes.p, &linear);
+      SNESGetConvergedReason(snes.p, &reason);
+      rep.iterations += iterations;
+      if (reason != SNES_DIVERGED_LINEAR_SOLVE || widened == kWidenings) break;
+      const PetscInt room = widen_mumps_workspace(snes.p, opt);
+      if (room == 0) break;
+      if (progress) {
+        char what[200];
+        std::snprintf(what, sizeof what, "Newton: MUMPS ran out of workspace in load step %d; factoring again with "
+                      "ICNTL(14) = %d%% added to its estimate", step, static_cast<int>(room));
+        progress->phase(what);
+      }
+      check(VecCopy(x_start.p, x.p), "VecCopy");
+    }
     if (const PetscInt nulls = null_pivots(snes.p, opt); nulls != 0) {
       // (An elastic body's singular stiffness throws: a missing support.)
       rep.failure = singular_stiffness(model, step, nulls > 0 ? "MUMPS found " + std::to_string(nulls) + " null pivots"
@@ -352,7 +400,10 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
       // the last step's state stays, as for a singular factor.
       rep.failure = "Newton (PETSc): SNES stopped in load step " + std::to_string(step) + " with " +
                     SNESConvergedReasons[reason] + "; the last good state is load step " + std::to_string(step - 1);
-      if (reason == SNES_DIVERGED_LINEAR_SOLVE)
+      if (reason == SNES_DIVERGED_LINEAR_SOLVE && mumps_status(snes.p, opt) < 0)
+        rep.failure += " (MUMPS stopped with INFOG(1) = " + std::to_string(mumps_status(snes.p, opt)) +
+                       "; for a workspace too small, -8, -9, -14, -17 or -20, raise -mat_mumps_icntl_14)";
+      else if (reason == SNES_DIVERGED_LINEAR_SOLVE)
         rep.failure += " (the linear solver " + opt.linear_solver +
                        " failed: a singular stiffness, e.g. a missing boundary condition, or -ksp_max_it too low)";
       else if (!model.history())
