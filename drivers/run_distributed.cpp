@@ -31,6 +31,7 @@
 #include "memory_estimate.hpp"
 #include "output_folder.hpp"
 #include "perinom/core/error.hpp"
+#include "perinom/operators/singular_family.hpp"
 #include "perinom/core/timer.hpp"
 #include "perinom/distributed/loading_share.hpp"
 #include "perinom/distributed/correction_share.hpp"
@@ -158,6 +159,10 @@ int run_distributed(const Options& opt) {
   if (thin_plate) plate.emplace(alike_on_ranks(world, [&] { return plate_frame(scene); }));
   // (plate->problem is spent)
   const Problem frame = thin_plate ? std::move(plate->problem) : alike_on_ranks(world, [&] { return build_problem_frame(scene); });
+  if (frame.cloud.size() < std::size_t(world.size))  // (a rank without particles crashed the search)
+    throw InputErrorOnEveryRank(scene.source + ": " + std::to_string(frame.cloud.size()) + " particles for " +
+                                std::to_string(world.size) + " ranks: every rank needs particles of its own; run on "
+                                "fewer ranks (mpirun -np " + std::to_string(frame.cloud.size()) + " at most)");
   if (root) print_body_notes(frame);
   // The supports' free rigid motions, before a static solve, as serially (run_command.cpp):
   // on 2 ranks the run said nothing, and a load along one ended NOT converged with no reason.
@@ -194,8 +199,14 @@ int run_distributed(const Options& opt) {
     CorrespondenceOptions copt = correspondence_options(scene);
     copt.ranks = &share;
     copt.fitted_rows = part.owned + part.near;  // the far ghosts' truncated families only lend values
-    local.model = std::make_unique<CorrespondenceModel>(local.cloud, families, scene.material, copt, Surface{},
-                                                        consistent ? facets.facets : BoundaryFacets{});
+    try {
+      local.model = std::make_unique<CorrespondenceModel>(local.cloud, families, scene.material, copt, Surface{},
+                                                          consistent ? facets.facets : BoundaryFacets{});
+    } catch (const SingularFamily& e) {
+      // As serially: the key, and the particle in the whole cloud's numbering (it read the
+      // rank's own, without the key).
+      throw InputError(horizon_error(scene, frame.cloud, e.with_index(part.particles[e.particle])));
+    }
   }
   DistributedModel distributed(dynamic_cast<LocalModel&>(*local.model), part);
   const LoadingShare loading_share(part, d);

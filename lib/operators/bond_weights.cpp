@@ -2,9 +2,8 @@
 
 #include <Eigen/Dense>
 #include <cmath>
-#include <sstream>
 
-#include "perinom/core/error.hpp"
+#include "perinom/operators/singular_family.hpp"
 #include "shape_tensor.hpp"
 
 namespace perinom {
@@ -67,16 +66,9 @@ BondWeights bond_weights(const PointCloud& cloud, const Families& families, Infl
       if (singular < 0 || static_cast<long>(i) < singular) singular = static_cast<long>(i);
     }
   }
-  if (singular >= 0) {
-    std::ostringstream msg;
-    msg << "particle " << singular << " at (";
-    for (int a = 0; a < d; ++a) msg << (a ? ", " : "") << cloud.x[singular * d + a];
-    msg << "): shape tensor is singular; its family of "
-        << families.end(singular) - families.begin(singular)
-        << " neighbours does not span R^" << d
-        << " (increase discretization.horizon.ratio or discretization.horizon.neighbors)";
-    throw InputError(msg.str());
-  }
+  if (singular >= 0)
+    throw SingularFamily(d, cloud.x.data(), static_cast<ParticleId>(singular),
+                         static_cast<long>(families.end(singular) - families.begin(singular)), 1);
   return b;
 }
 

@@ -4,11 +4,11 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "perinom/core/error.hpp"
+#include "perinom/operators/singular_family.hpp"
 #include "shape_tensor.hpp"
 
 namespace perinom {
@@ -30,21 +30,7 @@ void basis(int d, const double* xi, double* p) {
 }
 
 [[noreturn]] void report_singular(int d, const double* x, const BondGraph& graph, int order, std::size_t i) {
-  std::ostringstream msg;
-  msg << "particle " << i << " at (";
-  for (int a = 0; a < d; ++a) msg << (a ? ", " : "") << x[i * d + a];
-  const long family = graph.end(i) - graph.begin(i);
-  if (order == 1) {
-    msg << "): shape tensor is singular; its family of " << family << " neighbours does not span R^" << d
-        << " (increase discretization.horizon.ratio or discretization.horizon.neighbors)";
-  } else {
-    msg << "): the second-order K is singular; its family of " << family
-        << " neighbours does not determine a quadratic in R^" << d << " (that takes at least "
-        << d + d * (d + 1) / 2
-        << " neighbours, not all on one conic or quadric: e.g. three distinct layers along each "
-           "axis; increase discretization.horizon.ratio or discretization.horizon.neighbors)";
-  }
-  throw InputError(msg.str());
+  throw SingularFamily(d, x, static_cast<ParticleId>(i), static_cast<long>(graph.end(i) - graph.begin(i)), order);
 }
 
 std::shared_ptr<const BondGraph> graph_of(const Families& families) {
