@@ -1,5 +1,6 @@
 #include "perinom/geometry/plate_cloud.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -48,8 +49,8 @@ PlateCloud make_plate_cloud(const BoxGeometry& box, double dx, const PlateEdges&
     const long cells = std::lround(length / dx);
     if (cells < 2 || cells <= layers)
       throw InputError("the plate has " + std::to_string(cells) + " cells along " + (a ? "y" : "x") +
-                       "; a thin plate needs at least 2, and more than its ghost layers (" +
-                       std::to_string(layers) + ")");
+                       "; a thin plate needs at least " + std::to_string(std::max(2, layers + 1)) +
+                       " (2, and more than its " + std::to_string(layers) + " ghost layers)");
     if (cells > 40000) throw InputError("the plate holds more than 40000 cells per side (check discretization.dx)");
     p.nodes[a] = cells + 1;
     c.spacing[a] = length / cells;

@@ -191,3 +191,13 @@ TEST_CASE("a pressure on a side of a plate loads that edge's nodes at every spac
     CHECK(loaded == std::size_t(std::lround(0.5 / dx)) + 1);           // the edge's nodes, corners included
   }
 }
+
+TEST_CASE("a plate of too few cells is refused with the count it needs", "[thin_plate]") {
+  // It said "has 2 cells ...; needs at least 2, and more than its ghost layers (2)".
+  PlateEdges edges;
+  REQUIRE_THROWS_WITH(make_plate_cloud(square(1.0), 0.5, edges, 2),
+                      Catch::Contains("the plate has 2 cells along x; a thin plate needs at least 3 (2, and more than "
+                                      "its 2 ghost layers)"));
+  REQUIRE_THROWS_WITH(make_plate_cloud(square(1.0), 1.0, edges, 1), Catch::Contains("needs at least 2"));
+  REQUIRE_NOTHROW(make_plate_cloud(square(1.0), 1.0 / 3.0, edges, 2));
+}
