@@ -8,8 +8,12 @@
 
 namespace perinom::cli {
 
-/// Below this many particles across its thinnest side a body gets the note.
+/// Below this many particles across its thinnest side a body gets the note; with the
+/// first-order fit (model.operator_order 1, the classical formulation's default), whose
+/// cantilever is 17% soft at 8 across and 4.9% at 16, below the second.
 inline constexpr int kThinBodyParticles = 8;
+inline constexpr int kThinBodyParticlesFirstOrder = 16;
+int thin_body_particles(const Scene& s);
 
 /// The thinnest place of a correspondence body fewer than `below` particles across (none:
 /// `where` empty): its particles across and where ("along y from (x, y)"), measured by
@@ -22,8 +26,9 @@ struct ThinPlace {
 };
 ThinPlace thinnest_place(const Problem& p, int below);
 
-/// "" or the note (without a prefix) for a correspondence body fewer than kThinBodyParticles
-/// particles across somewhere (thinnest_place), with the measured errors at 4, 8 and 16 across.
+/// "" or the note (without a prefix) for a correspondence body fewer than
+/// thin_body_particles across somewhere (thinnest_place), with the measured errors of its
+/// fit's order at 4, 8 and 16 across.
 std::string thin_body_note(const Problem& p);
 
 }  // namespace perinom::cli

@@ -110,3 +110,26 @@ TEST_CASE("a precrack laid along a particle row says that it cuts only some bond
   REQUIRE(between.exit_code == 0);
   CHECK(between.out.find("passes through") == std::string::npos);
 }
+
+TEST_CASE("with the first-order fit a body fewer than 16 particles across gets the note with its own figures", "[cli]") {
+  // model.operator_order 1 (the classical formulation's default) bends 17% soft at 8 across:
+  // the note fired below 8 only, quoting the second-order fit's +2.3%.
+  const std::string slender = with(with(tiny_scene, "max: [0.01, 0.01]", "max: [0.08, 0.008]"), "point: [0.005, 0.01]",
+                                   "point: [0.005, 0.008]");
+  ScratchDir dir;
+  std::ofstream(dir.path / "first.yaml") << with(slender, "boundary:", "model: {type: correspondence, formulation: classical}\nboundary:");
+  std::ofstream(dir.path / "second.yaml") << slender;
+  const Outcome first = perinom(dir, "check first.yaml");
+  INFO(first.out << first.err);
+  REQUIRE(first.exit_code == 0);
+  CHECK(first.out.find("the body is 8 particles across along y") != std::string::npos);
+  CHECK(first.out.find("+17% at 8") != std::string::npos);
+  const Outcome second = perinom(dir, "check second.yaml");
+  REQUIRE(second.exit_code == 0);
+  CHECK(second.out.find("particles across") == std::string::npos);
+  std::ofstream(dir.path / "wide.yaml") << with(with(slender, "max: [0.08, 0.008]", "max: [0.08, 0.016]"), "boundary:",
+                                                "model: {type: correspondence, formulation: classical}\nboundary:");
+  const Outcome wide = perinom(dir, "check wide.yaml");
+  REQUIRE(wide.exit_code == 0);
+  CHECK(wide.out.find("particles across") == std::string::npos);
+}
