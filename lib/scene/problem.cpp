@@ -129,10 +129,15 @@ void pin_rigid_body(Problem& p, bool layer_loads) {
     text += " are not balanced: resultant force " + list(r.force.data(), d) + " N, moment " +
             list(r.moment.data(), d == 2 ? 1 : 3) + " N m about the centroid, against " +
             list(&r.force_scale, 1) + " N of nodal loads (rigid_body needs a body in equilibrium under its loads alone)";
-    // Layer loads act at the particles: on a jittered cloud their moments need not cancel.
-    if (layer_loads && s.discretization.jitter > 0.0)
-      text += "; this formulation applies tractions at the jittered particles, whose moments need not cancel: "
-              "the consistent formulation applies them at the faces";
+    // Layer loads act at the particles, half a spacing inside the faces (jittered: where they
+    // are): their moments need not cancel, even where the tractions' do (a pure shear on a
+    // 2:1 plate: tau dx (L - h)). Without jitter the hint was left out, and the message
+    // blamed balanced loads.
+    if (layer_loads)
+      text += "; this formulation applies tractions at the outer layer's particles (half a spacing inside the faces"
+              + std::string(s.discretization.jitter > 0.0 ? ", jittered" : "") +
+              "), whose moments need not cancel where the tractions' do: the consistent formulation applies them at "
+              "the faces";
     throw InputError(s.source + ": constraints: " + text);
   }
   try {

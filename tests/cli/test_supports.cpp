@@ -178,6 +178,22 @@ TEST_CASE("a free plate without constraints is singular, and rigid_body refuses 
   CHECK(typo.err.find("constraints: must be none or rigid_body") != std::string::npos);
 }
 
+TEST_CASE("a pure shear balanced at the faces is refused under layer loads with the reason, and runs at the faces", "[cli][supports]") {
+  // Classical puts the shear tractions half a spacing inside the faces: their moment is
+  // tau dx (L - h) = 1e6 * 0.001 * 0.01 * 1 m = 10 N m. The message blamed the loads alone.
+  const std::string shear = with(free_plate, "  - {region: left, traction: [-1.0e6, 0.0]}\n  - {region: right, traction: [1.0e6, 0.0]}\n",
+                                 "  - {region: left, traction: [0.0, -1.0e6]}\n  - {region: right, traction: [0.0, 1.0e6]}\n"
+                                 "  - {region: bottom, traction: [-1.0e6, 0.0]}\n  - {region: top, traction: [1.0e6, 0.0]}\n");
+  const Run layer = run("shear_layer", shear, "--set model.formulation=classical");
+  CHECK(layer.exit_code == 2);
+  CHECK(layer.err.find("moment 10 N m") != std::string::npos);
+  CHECK(layer.err.find("this formulation applies tractions at the outer layer's particles (half a spacing inside the "
+                       "faces), whose moments need not cancel") != std::string::npos);
+  const Run faces = run("shear_faces", shear);
+  INFO(faces.out << faces.err);
+  CHECK(faces.exit_code == 0);
+}
+
 TEST_CASE("constraints rigid_body pins 6 dofs of a free 3-D bar in tension", "[cli][supports]") {
   const std::string bar = R"(name: free_bar
 dimension: 3
