@@ -50,6 +50,12 @@ void print_shares(const char* label, const std::vector<RankShare>& shares) {
 void print_partition(const Problem& p, int ranks) {
   const Families families = scene_families(p.scene, p.cloud);
   std::printf("  partition       %d ranks\n", ranks);
+  if (std::size_t(ranks) > p.cloud.size()) {
+    // As run refuses it: a rank needs particles of its own.
+    std::printf("                  more ranks than the %zu particles: mpirun -np %d perinom run refuses this scene "
+                "(every rank needs particles of its own)\n", p.cloud.size(), ranks);
+    return;
+  }
   print_shares("contiguous blocks of a Morton curve", partition_shares(families, morton_order(p.cloud), ranks));
   if (petsc_available()) print_shares("PT-Scotch on the bond graph", rank_shares(families, scotch_partition(families, ranks), ranks));
   else std::printf("                  PT-Scotch: not in this build (no PETSc)\n");

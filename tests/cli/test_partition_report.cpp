@@ -19,4 +19,10 @@ TEST_CASE("check --ranks reports each block's owned particles and ghosts", "[cli
   CHECK((scotch || o.out.find("PT-Scotch: not in this build") != std::string::npos));
   if (scotch) CHECK(o.out.find("PT-Scotch on the bond graph: owned 50-50 particles") != std::string::npos);
   require_one_clear_error(perinom(dir, "check scene.yaml --ranks 0"), {"--ranks", "out of range"});
+  // More ranks than particles: run refuses it, and check says so (it printed "owned 0-1").
+  const Outcome many = perinom(dir, "check scene.yaml --ranks 101");
+  CHECK(many.exit_code == 0);
+  CHECK(many.out.find("more ranks than the 100 particles: mpirun -np 101 perinom run refuses this scene") !=
+        std::string::npos);
+  CHECK(many.out.find("owned 0-") == std::string::npos);
 }
