@@ -115,7 +115,7 @@ void require_memory(const Scene& s, const MemoryEstimate& e, double limit, bool 
   std::fflush(stdout);
   if (limit <= 0.0 || e.bytes <= limit) return;
   char sizes[160];
-  std::snprintf(sizes, sizeof sizes, "about %.0f MiB (%.4g particles, %.4g bonds), more than the %.0f MiB ",
+  std::snprintf(sizes, sizeof sizes, "about %.0f MiB (%.4g particles, %.4g bonds), more than the %.3g MiB ",
                 mib(e.bytes), e.particles, e.bonds, mib(limit));
   std::ostringstream what;
   what << e.key << ": the scene needs " << sizes

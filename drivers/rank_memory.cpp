@@ -71,8 +71,10 @@ RankMemory require_rank_memory(const Scene& s, double local_bonds, double local_
   const std::string cure = key == "discretization.dx" ? "; use a larger dx or more hosts" : "; use a smaller horizon or more hosts";
   std::ostringstream what;
   if (max_memory > 0.0 && m.most_bytes > max_memory) {
+    char allowed[32];  // (100K read "0 MiB")
+    std::snprintf(allowed, sizeof allowed, "%.3g", mib(max_memory));
     what << key << ": rank " << most << " needs about " << long(mib(m.most_bytes)) << " MiB, more than the "
-         << long(mib(max_memory)) << " MiB allowed to each rank by --max-memory" << cure;
+         << allowed << " MiB allowed to each rank by --max-memory" << cure;
     throw InputErrorOnEveryRank(what.str());  // every rank holds every row
   }
   for (const auto& [host, need] : host_need)

@@ -50,6 +50,8 @@ TEST_CASE("a scene that would not fit in memory is refused by the key to change"
   }
   SECTION("--max-memory sets the limit") {
     require_rejected(tiny_scene, {"discretization.dx: the scene needs", "allowed by --max-memory"}, "--max-memory 1M");
+    // A limit under 1 MiB is said as it is (100K read "the 0 MiB allowed").
+    require_rejected(tiny_scene, {"more than the 0.0977 MiB allowed by --max-memory"}, "--max-memory 100K");
     ScratchDir dir;
     std::ofstream(dir.path / "scene.yaml") << tiny_scene;
     const Outcome o = perinom(dir, "check scene.yaml --max-memory 2G");
