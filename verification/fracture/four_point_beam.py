@@ -231,7 +231,10 @@ def main():
                     "(through the ligament that the unbreakable grips under the loads leave)." if q["failed"] else
                     f"; {r['P'][-1] / r['P'][k] * 100:.0f}% of the peak is still carried at the end."))
         L.append("")
-    L += ["![load against displacement](four_point_beam_curve.png)", "",
+    L += ["Moving the upper flaw does not bring the seed's second crack: at eight other places in and above the "
+          "tension zone the crack from the lower flaw's tip reaches or passes it first "
+          "([four_point_flaws.md](four_point_flaws.md), verification/fracture/four_point_flaws.py).", "",
+          "![load against displacement](four_point_beam_curve.png)", "",
           "![the order the cracks grew in](four_point_beam_order.png)", "",
           "![2-D damage and max principal stress](four_point_beam_snapshots.png)", ""]
     open(os.path.join(DOCS, "four_point_beam.md"), "w").write("\n".join(L))
