@@ -20,6 +20,14 @@ std::vector<double> plastic_strains(const Model& model) {
   return h ? h->history_variable() : std::vector<double>{};
 }
 
+/// Whether any particle (of any rank) has plastic strain.
+bool plastically_strained(const Model& model) {
+  const auto xi = plastic_strains(model);
+  double any = std::any_of(xi.begin(), xi.end(), [](double v) { return v > 0.0; }) ? 1.0 : 0.0;
+  model.sum_across_ranks(&any, 1);
+  return any > 0.0;
+}
+
 void count_plastic(const Model& model, const std::vector<double>& xi_before,
                    LoadStepRecord& r) {
   const auto xi = plastic_strains(model);
@@ -312,8 +320,11 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
             // The state left is the last balanced one: this step's previous round, or the last step.
             u = r.rounds > 1 ? balanced : u_prev;
             const bool forced = stage.loading.has_force() && stage.loading.force_norm(r.load_factor) > 0.0;
+            // A body with no plastic strain and no particle flagged in this step is not past its
+            // limit load (a block turned elastically was told so).
+            const bool yielded = plastic != nullptr && (r.newly_flagged > 0 || plastically_strained(model));
             const std::string capacity =
-                forced ? past_capacity(changes != nullptr, plastic != nullptr,
+                forced ? past_capacity(changes != nullptr, yielded,
                                        last_increment > 0.0 ? std::sqrt(moved / last_increment) : 0.0)
                        : "";
             throw SolveError(where(stage, int(k), step) + ": the balance did not converge in " +

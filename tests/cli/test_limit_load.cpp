@@ -75,3 +75,18 @@ TEST_CASE("a plastic column under a force past its limit load stops saying the f
     CHECK(rows(dir.path / "past" / "load_steps.csv") == 2);
   }
 }
+
+TEST_CASE("a plastic body that has not yielded is not told it is past its limit load", "[cli][plastic]") {
+  // The column below its limit, given too few ADR iterations: no particle has yielded, so
+  // the balance's failure is the iterations', not a mechanism's (an elastically turned block
+  // was told "more than the plastic body can carry").
+  ScratchDir dir;
+  std::ofstream(dir.path / "short.yaml") << with(with(column, "pressure: 4.0e5", "pressure: 1.0e4"), "max_iterations: 5000",
+                                                 "max_iterations: 20");
+  const Outcome o = perinom(dir, "run short.yaml --out short");
+  INFO(o.out << o.err);
+  CHECK(o.exit_code == 1);
+  CHECK(o.err.find("the balance did not converge in 20 ADR iterations") != std::string::npos);
+  CHECK(o.err.find("raise solver.max_iterations or loosen the tolerance") != std::string::npos);
+  CHECK(o.err.find("plastic body") == std::string::npos);
+}

@@ -258,6 +258,7 @@ class CorrespondenceModel : public LocalModel, public ModelHistory {
   std::vector<double> x_;   // the particles' positions (surface stress at the facets)
   int dim_;
   int order_;
+  bool rotating_ = false;  // finite_rotation: the tangent's blocks turn with the body
   Formulation formulation_;
   LinearElastic material_;
   Surface surface_;
