@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 
 #include "perinom/core/error.hpp"
 
@@ -20,6 +21,18 @@ bool Hole::contains(const double* p, int dim) const {
 
 PointCloud make_lattice(const BoxGeometry& box, double dx, double jitter, std::uint64_t seed) {
   const int d = box.dim;
+  char text[200];
+  if (d != 2 && d != 3) throw InputError("BoxGeometry::dim = " + std::to_string(d) + ": must be 2 or 3");
+  if (!(dx > 0.0 && std::isfinite(dx))) {
+    std::snprintf(text, sizeof text, "make_lattice: dx = %g: must be positive and finite", dx);
+    throw InputError(text);
+  }
+  for (int a = 0; a < d; ++a)
+    if (!(box.min[a] < box.max[a])) {
+      std::snprintf(text, sizeof text, "BoxGeometry: min[%d] = %g is not below max[%d] = %g (an empty or inverted box)",
+                    a, box.min[a], a, box.max[a]);
+      throw InputError(text);
+    }
   std::array<long, 3> n{1, 1, 1};
   PointCloud cloud;
   cloud.dim = d;
@@ -63,7 +76,6 @@ PointCloud make_lattice(const BoxGeometry& box, double dx, double jitter, std::u
   // without it (a centre in mm in a box in m, a hole finer than the spacing).
   for (std::size_t h = 0; h < box.holes.size(); ++h) {
     if (removed[h] > 0) continue;
-    char text[200];
     std::snprintf(text, sizeof text, "holes[%zu]: removes no particle: the hole lies outside the box or between "
                   "the particles (radius %g m, spacing %g m)", h, box.holes[h].radius, dx);
     throw InputError(text);

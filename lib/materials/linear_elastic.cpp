@@ -1,8 +1,24 @@
 #include "perinom/materials/linear_elastic.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "perinom/core/error.hpp"
 
 namespace perinom {
+
+void check_material(const LinearElastic& m) {
+  auto refuse = [](const char* field, double v, const char* rule) {
+    char text[160];
+    std::snprintf(text, sizeof text, "LinearElastic::%s = %g: %s", field, v, rule);
+    throw InputError(text);
+  };
+  if (!(m.E > 0.0 && std::isfinite(m.E))) refuse("E", m.E, "must be positive and finite");
+  if (!(m.nu > -1.0 && m.nu < 0.5)) refuse("nu", m.nu, "must lie in (-1, 0.5)");
+  if (!(m.density > 0.0 && std::isfinite(m.density))) refuse("density", m.density, "must be positive and finite");
+  if (m.dim != 2 && m.dim != 3) refuse("dim", m.dim, "must be 2 or 3");
+}
 
 double LinearElastic::lambda() const {
   const double lam = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));

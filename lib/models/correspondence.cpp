@@ -58,6 +58,19 @@ CorrespondenceModel::CorrespondenceModel(const PointCloud& cloud, const Families
       surface_(std::move(surface)),
       volume_(cloud.volume),
       law_(std::move(law)) {
+  // Once, before anything indexes the cloud by the families or the material by the dimension.
+  check_cloud(cloud);
+  check_families(families, cloud.size());
+  check_material(material);
+  if (material.dim != cloud.dim)
+    throw InputError("CorrespondenceModel: LinearElastic::dim = " + std::to_string(material.dim) + " on a " +
+                     std::to_string(cloud.dim) + "-D cloud");
+  if (!(options.stabilization >= 0.0 && std::isfinite(options.stabilization))) {
+    char text[120];
+    std::snprintf(text, sizeof text, "CorrespondenceOptions::stabilization = %g: must be zero or positive",
+                  options.stabilization);
+    throw InputError(text);
+  }
   c_hg_ = options.stabilization;
   fracture_fields_ = options.fracture_fields;
   x_ = cloud.x;

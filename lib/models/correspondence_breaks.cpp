@@ -14,6 +14,12 @@ void CorrespondenceModel::check_breakable(const std::vector<std::pair<ParticleId
     if (static_cast<std::size_t>(i) >= particles() || static_cast<std::size_t>(j) >= particles())
       throw std::out_of_range("break_bonds: bond (" + std::to_string(i) + ", " + std::to_string(j) +
                               ") names a particle beyond the " + std::to_string(particles()) + " of the cloud");
+  // A pair that is no bond breaks nothing: a caller's mix-up of ids, not a crack. (A bond
+  // broken already, or present one way only in k-nearest families, is still a bond.)
+  for (const auto& [i, j] : bonds)
+    if (i == j || (graph_->find(i, j) < 0 && graph_->find(j, i) < 0))
+      throw std::invalid_argument("break_bonds: (" + std::to_string(i) + ", " + std::to_string(j) +
+                                  ") is not a bond of the families");
   if (formulation_ == Formulation::consistent)
     throw std::logic_error("break_bonds: the consistent formulation's G~ comes from a global correction and "
                            "cannot be refreshed row by row");

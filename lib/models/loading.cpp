@@ -10,6 +10,46 @@
 
 namespace perinom {
 
+void check_loading(const Loading& l, std::size_t dofs, bool with_start) {
+  const auto text = [](auto v) { return std::to_string(v); };
+  const std::size_t m = l.fixed.size();
+  for (std::size_t k = 0; k < m; ++k)
+    if (l.fixed[k] < 0 || static_cast<std::size_t>(l.fixed[k]) >= dofs)
+      throw InputError("Loading::fixed[" + text(k) + "] = " + text(l.fixed[k]) + ": not a dof of the model's " +
+                       text(dofs));
+  auto per_constraint = [&](const auto& v, const char* name, bool optional) {
+    if (v.size() != m && !(optional && v.empty()))
+      throw InputError(std::string("Loading::") + name + " holds " + text(v.size()) + " entries for the " + text(m) +
+                       " fixed dofs (Loading::fixed)");
+  };
+  per_constraint(l.value, "value", false);
+  per_constraint(l.rate, "rate", true);
+  if (with_start) per_constraint(l.value0, "value0", true);
+  per_constraint(l.support, "support", true);
+  auto per_dof = [&](const std::vector<double>& v, const char* name) {
+    if (!v.empty() && v.size() != dofs)
+      throw InputError(std::string("Loading::") + name + " holds " + text(v.size()) + " entries for the model's " +
+                       text(dofs) + " dofs");
+  };
+  per_dof(l.force, "force");
+  per_dof(l.pressure_force, "pressure_force");
+  if (with_start) per_dof(l.force0, "force0"), per_dof(l.pressure_force0, "pressure_force0");
+  if (l.couplings.empty()) return;
+  if (l.couplings.size() != m + 1 || l.couplings.front() != 0 ||
+      l.couplings.back() != static_cast<Offset>(l.coupled.size()) || l.coef.size() != l.coupled.size())
+    throw InputError("Loading::couplings: not a CSR of the " + text(m) + " constraints over Loading::coupled (" +
+                     text(l.coupled.size()) + " entries) and Loading::coef (" + text(l.coef.size()) + ")");
+  for (std::size_t k = 0; k < m; ++k)
+    if (l.couplings[k + 1] < l.couplings[k])
+      throw InputError("Loading::couplings: constraint " + text(k) + "'s couplings end before they begin");
+  per_constraint(l.scale, "scale", false);
+  if (l.ranks) return;  // a rank's couplings read its ghost dofs too, numbered from dofs on
+  for (std::size_t c = 0; c < l.coupled.size(); ++c)
+    if (l.coupled[c] < 0 || static_cast<std::size_t>(l.coupled[c]) >= dofs)
+      throw InputError("Loading::coupled[" + text(c) + "] = " + text(l.coupled[c]) + ": not a dof of the model's " +
+                       text(dofs));
+}
+
 void Loading::not_converged(const char* what, std::size_t k) const {
   std::string where = "the face-located constraint on dof " + std::to_string(fixed[k]);
   if (!support.empty() && support[k] >= 0) where += " (support '" + support_names[support[k]] + "')";

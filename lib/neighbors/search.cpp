@@ -40,6 +40,9 @@ Families radius_families(const PointCloud& cloud, double delta) {
   const int d = cloud.dim;
   const std::size_t n = cloud.size();
   if (!(delta > 0.0)) throw InputError("neighbour search: the horizon must be positive");
+  check_cloud(cloud);
+  // No particles, no families (a rank that owns none); the bounding box below reads x[0].
+  if (n == 0) return Families{};
   std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
   for (int a = 0; a < d; ++a) {
     lo[a] = hi[a] = cloud.x[a];
@@ -115,6 +118,7 @@ Families radius_families(const PointCloud& cloud, double delta) {
 Families knn_families(const PointCloud& cloud, int k) {
   const std::size_t n = cloud.size();
   if (k < 1) throw InputError("neighbour search: k must be at least 1");
+  check_cloud(cloud);
   if (static_cast<std::size_t>(k) >= n)
     throw InputError("neighbour search: k = " + std::to_string(k) + " neighbours but only " +
                      std::to_string(n) + " particles");

@@ -240,6 +240,9 @@ bool AdrRelaxation::balance(const Loading& loading, double s, std::vector<double
 SolveReport solve_adr(Model& model, const Loading& loading, const AdrOptions& opt,
                       std::vector<double>& u, Progress* progress, const Observer& observe,
                       const Checkpoints<AdrState>& checkpoints, const AdrState* resume) {
+  check_loading(loading, model.dofs());
+  if (opt.load_steps < 1)
+    throw InputError("AdrOptions::load_steps = " + std::to_string(opt.load_steps) + ": must be at least 1");
   SolveReport rep;
   rep.history.columns = {"iteration", "load_factor", "residual", "displacement_change", "damping"};
   for (const auto& c : loading.reaction_columns(model.dofs_per_particle())) rep.history.columns.push_back(c);

@@ -17,6 +17,7 @@ using detail::Sparse;
 
 SolveReport solve_direct(TangentModel& model, const Loading& loading, std::vector<double>& u,
                          const DirectOptions& options, Progress* progress) {
+  check_loading(loading, model.dofs());
   if (model.history())
     throw InputError("solver.type: direct solves a linear problem; a model with history (plasticity) needs lbc, "
                      "adr or newton");

@@ -119,6 +119,12 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
                                 after_step,
                             const Checkpoints<LoadPathState>& checkpoints, const LoadPathState* resume,
                             const ModelChanges* changes) {
+  for (std::size_t k = 0; k < stages.size(); ++k) {
+    check_loading(stages[k].loading, model.dofs(), false);  // begin_stage sets each start
+    if (stages[k].steps < 1)
+      throw InputError("LoadStage::steps of stage " + std::to_string(k) + " = " + std::to_string(stages[k].steps) +
+                       ": must be at least 1");
+  }
   if (opt.scheme == LoadPathScheme::newton && (checkpoints.every > 0 || resume))
     throw std::invalid_argument("solve_load_path: the Newton scheme is not checkpointed (KINSOL's state is not kept)");
   if (opt.scheme == LoadPathScheme::newton && changes)

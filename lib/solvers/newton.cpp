@@ -129,6 +129,9 @@ void append_reactions(TangentModel& model, const Loading& loading, double s, con
 
 SolveReport solve_newton(TangentModel& model, const Loading& loading,
                          const NewtonOptions& opt, std::vector<double>& u, Progress* progress) {
+  check_loading(loading, model.dofs());
+  if (opt.load_steps < 1)
+    throw InputError("NewtonOptions::load_steps = " + std::to_string(opt.load_steps) + ": must be at least 1");
   static_assert(sizeof(sunindextype) == sizeof(std::int64_t), "SUNDIALS must use 64-bit indices");
   const bool umfpack = opt.linear_solver == "umfpack";
   if (!umfpack && opt.linear_solver != "klu") return detail::solve_newton_petsc(model, loading, opt, u, progress);

@@ -41,6 +41,7 @@ std::size_t free_dofs(const TangentModel& model, const Loading& loading) {
 }
 
 SpectrumReport stiffness_spectrum(TangentModel& model, const Loading& loading, const SpectrumOptions& options) {
+  check_loading(loading, model.dofs());
   const auto start = std::chrono::steady_clock::now();
   SpectrumReport rep;
   const std::size_t n_all = model.dofs();

@@ -315,6 +315,7 @@ SolveReport solve_verlet(Model& model, const Loading& loading, const VerletOptio
                          std::vector<double>& u, std::vector<double>& v, Progress* progress,
                          const Observer& observe, const Checkpoints<VerletState>& checkpoints,
                          const VerletState* resume, const ModelChanges* changes) {
+  check_loading(loading, model.dofs());
   SolveReport rep;
   try {
     integrate(model, loading, opt, u, v, progress, observe, checkpoints, resume, changes, rep);

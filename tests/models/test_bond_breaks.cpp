@@ -193,3 +193,16 @@ TEST_CASE("break_bonds refuses what it cannot refresh, before changing anything"
   CHECK(first.G().graph().broken() == 0);
   CHECK(first.break_bonds({bond}).broken == 1);
 }
+
+TEST_CASE("break_bonds refuses a pair that is not a bond, and (i, i)", "[models][refresh]") {
+  const PointCloud c = test::lattice(2, 8, 0.0);
+  const Families f = radius_families(c, 2.015);
+  CorrespondenceOptions o;
+  o.formulation = Formulation::classical;
+  CorrespondenceModel model(c, f, material(2), o);
+  REQUIRE_THROWS_WITH(model.break_bonds({{0, 63}}), Catch::Contains("(0, 63) is not a bond"));
+  REQUIRE_THROWS_WITH(model.break_bonds({{3, 3}}), Catch::Contains("(3, 3) is not a bond"));
+  // A bond broken already is still a bond: breaking it again breaks nothing.
+  REQUIRE(model.break_bonds({{0, 1}}).broken == 1);
+  CHECK(model.break_bonds({{1, 0}}).broken == 0);
+}

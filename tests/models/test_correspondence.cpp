@@ -258,3 +258,37 @@ TEST_CASE("order 2: the matrix-free and assembled stabilizations give the same f
     for (std::size_t m = 0; m < ks.size(); ++m) CHECK(ko[m] == Approx(ks[m]).epsilon(1e-11));
   }
 }
+
+TEST_CASE("the model refuses families of another cloud and a neighbour beyond the cloud", "[models]") {
+  const PointCloud c = test::lattice(2, 6, 0.0), finer = test::lattice(2, 8, 0.0);
+  const LinearElastic m = material(2, PlaneCondition::strain);
+  REQUIRE_THROWS_WITH(CorrespondenceModel(c, radius_families(finer, 2.015), m, {}),
+                      Catch::Contains("Families: rows for 64 particles on a cloud of 36"));
+  REQUIRE_THROWS_WITH(CorrespondenceModel(finer, radius_families(c, 2.015), m, {}),
+                      Catch::Contains("Families: rows for 36 particles on a cloud of 64"));
+  Families f = radius_families(c, 2.015);
+  f.neighbors[f.begin(3)] = 100000;
+  REQUIRE_THROWS_WITH(CorrespondenceModel(c, f, m, {}),
+                      Catch::Contains("particle 3 has neighbour 100000, beyond the 36 particles"));
+  Families self = radius_families(c, 2.015);
+  self.neighbors[self.begin(4)] = 4;
+  REQUIRE_THROWS_WITH(CorrespondenceModel(c, self, m, {}), Catch::Contains("particle 4 is its own neighbour"));
+}
+
+TEST_CASE("the model refuses a material of another dimension, bad constants and a negative stabilization",
+          "[models]") {
+  const PointCloud c = test::lattice(2, 6, 0.0);
+  const Families f = radius_families(c, 2.015);
+  REQUIRE_THROWS_WITH(CorrespondenceModel(c, f, material(3, PlaneCondition::none), {}),
+                      Catch::Contains("LinearElastic::dim = 3 on a 2-D cloud"));
+  LinearElastic m = material(2, PlaneCondition::strain);
+  m.nu = 0.5;
+  REQUIRE_THROWS_WITH(CorrespondenceModel(c, f, m, {}), Catch::Contains("LinearElastic::nu = 0.5"));
+  m = material(2, PlaneCondition::strain);
+  m.E = -1e9;
+  REQUIRE_THROWS_AS(CorrespondenceModel(c, f, m, {}), InputError);
+  CorrespondenceOptions o;
+  o.stabilization = -1.0;
+  REQUIRE_THROWS_WITH(CorrespondenceModel(c, f, material(2, PlaneCondition::strain), o),
+                      Catch::Contains("CorrespondenceOptions::stabilization"));
+}

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "../support/clouds.hpp"
+#include "perinom/core/error.hpp"
 #include "perinom/geometry/lattice.hpp"
 #include "perinom/neighbors/search.hpp"
 
@@ -120,4 +121,38 @@ TEST_CASE("the dual-support of k-nearest families lists exactly the bonds pointi
   }
   CHECK(t.offsets.back() == static_cast<Offset>(f.bonds()));
   CHECK(unequal > 0);  // supports really differ: the dual-support is not the family
+}
+
+TEST_CASE("radius search on an empty cloud gives empty families", "[neighbors]") {
+  PointCloud c;
+  c.dim = 2;
+  const Families f = radius_families(c, 0.3);
+  CHECK(f.particles() == 0);
+  CHECK(f.bonds() == 0);
+}
+
+TEST_CASE("the neighbour searches refuse a cloud whose x does not fit its size and dim", "[neighbors]") {
+  PointCloud c = test::lattice(2, 6, 0.0);
+  c.x.resize(10);
+  REQUIRE_THROWS_WITH(radius_families(c, 1.5), Catch::Contains("PointCloud::x holds 10 coordinates for 36"));
+  REQUIRE_THROWS_WITH(knn_families(c, 8), Catch::Contains("PointCloud::x holds 10 coordinates for 36"));
+  PointCloud d4 = test::lattice(2, 6, 0.0);
+  d4.dim = 4;
+  REQUIRE_THROWS_WITH(radius_families(d4, 1.5), Catch::Contains("PointCloud::dim = 4"));
+  REQUIRE_THROWS_WITH(knn_families(d4, 8), Catch::Contains("PointCloud::dim = 4"));
+}
+
+TEST_CASE("the neighbour searches refuse a particle at a coordinate that is not finite, naming it", "[neighbors]") {
+  PointCloud c = test::lattice(2, 6, 0.0);
+  c.x[2 * 2 + 1] = std::nan("");
+  REQUIRE_THROWS_AS(radius_families(c, 1.5), InputError);
+  REQUIRE_THROWS_WITH(radius_families(c, 1.5), Catch::Contains("particle 2 at (2.5, nan)"));
+  c.x[2 * 2 + 1] = INFINITY;
+  REQUIRE_THROWS_WITH(knn_families(c, 8), Catch::Contains("particle 2 at (2.5, inf)"));
+}
+
+TEST_CASE("the neighbour searches refuse a volume that is not positive, naming the particle", "[neighbors]") {
+  PointCloud c = test::lattice(3, 3, 0.0);
+  c.volume[5] = -1.0;
+  REQUIRE_THROWS_WITH(radius_families(c, 1.5), Catch::Contains("PointCloud::volume: particle 5 has volume -1"));
 }

@@ -116,3 +116,32 @@ boundary:
   }
   CHECK(first[1] == first[0]);  // from rest the correction is u: the same damping
 }
+
+TEST_CASE("solve_adr refuses a loading that does not fit the model, naming the field", "[solvers]") {
+  Problem p = build_problem(parse_scene(bar, "bar"));
+  auto& model = p.as<CorrespondenceModel>();
+  std::vector<double> u;
+  Loading fixed_beyond = p.loading;
+  fixed_beyond.fix(100000, 0.0);
+  REQUIRE_THROWS_WITH(solve_adr(model, fixed_beyond, {}, u), Catch::Contains("Loading::fixed["));
+  Loading negative = p.loading;
+  negative.fix(-5, 0.0);
+  REQUIRE_THROWS_WITH(solve_adr(model, negative, {}, u), Catch::Contains("= -5: not a dof"));
+  Loading short_value = p.loading;
+  short_value.value.resize(1);
+  REQUIRE_THROWS_WITH(solve_adr(model, short_value, {}, u), Catch::Contains("Loading::value holds 1 entries"));
+  Loading short_force = p.loading;
+  short_force.force.assign(5, 1.0);
+  REQUIRE_THROWS_WITH(solve_adr(model, short_force, {}, u),
+                      Catch::Contains("Loading::force holds 5 entries for the model's " + std::to_string(model.dofs())));
+  REQUIRE_THROWS_AS(solve_adr(model, short_force, {}, u), InputError);
+}
+
+TEST_CASE("solve_adr refuses zero load steps", "[solvers]") {
+  Problem p = build_problem(parse_scene(bar, "bar"));
+  std::vector<double> u;
+  AdrOptions opt;
+  opt.load_steps = 0;
+  REQUIRE_THROWS_WITH(solve_adr(p.as<CorrespondenceModel>(), p.loading, opt, u),
+                      Catch::Contains("AdrOptions::load_steps = 0"));
+}

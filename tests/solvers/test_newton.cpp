@@ -219,3 +219,15 @@ TEST_CASE("Newton's plate deflection equals ADR's on the 21 x 21 simply supporte
     CHECK(relative_difference(r.adr, r.newton) < 1e-6);
   }
 }
+
+TEST_CASE("Newton refuses a loading that does not fit the model, and zero load steps", "[solvers][newton]") {
+  Problem p = build_problem(parse_scene(plate("classical", "layer"), "plate"));
+  auto& model = p.as<CorrespondenceModel>();
+  std::vector<double> u;
+  Loading beyond = p.loading;
+  beyond.fix(static_cast<std::int64_t>(model.dofs()), 0.0);
+  REQUIRE_THROWS_WITH(solve_newton(model, beyond, {}, u), Catch::Contains("Loading::fixed["));
+  NewtonOptions opt;
+  opt.load_steps = 0;
+  REQUIRE_THROWS_WITH(solve_newton(model, p.loading, opt, u), Catch::Contains("NewtonOptions::load_steps = 0"));
+}

@@ -21,6 +21,12 @@ struct PointCloud {
   const double* point(std::size_t i) const { return x.data() + i * dim; }
 };
 
+/// Throws InputError unless the cloud is well formed: dim 2 or 3, x holding size() * dim
+/// coordinates, every coordinate finite and every volume positive and finite (naming the first
+/// particle that is not). O(N); the
+/// entry points that index x by size() and dim call it once (the neighbour searches, the models).
+void check_cloud(const PointCloud& cloud);
+
 /// The listed particles of `cloud` as a cloud of their own, in that order (a rank's local
 /// part, a plate's part with its mirrors).
 PointCloud subcloud(const PointCloud& cloud, const std::vector<ParticleId>& particles);

@@ -30,6 +30,10 @@ struct LinearElastic {
   void stress3(const double* H, double* sigma) const;
 };
 
+/// Throws InputError, naming the field, unless E > 0, -1 < nu < 0.5, density > 0 (all finite)
+/// and dim is 2 or 3: other constants give NaN or a stiffness of the wrong sign.
+void check_material(const LinearElastic& m);
+
 /// von Mises equivalent stress of a 3 x 3 stress (Pa).
 double von_mises(const double* sigma3);
 

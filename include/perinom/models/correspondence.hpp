@@ -175,7 +175,9 @@ class CorrespondenceModel : public LocalModel, public ModelHistory {
   /// without them (tests/models/test_bond_breaks.cpp). A particle whose live family no longer
   /// spans R^d is detached (NonlocalOperator::detach_quality). The surface band of the
   /// improved and strong formulations stays that of the intact body. Throws
-  /// std::out_of_range for a particle index beyond the cloud, and std::logic_error (before
+  /// std::out_of_range for a particle index beyond the cloud, std::invalid_argument for a pair
+  /// that is not a bond (neither (i, j) nor (j, i) in the families, or i == j; a bond broken
+  /// already is still one), and std::logic_error (before
   /// changing anything) for the consistent formulation (G~ comes from a global correction)
   /// and for a stabilization stored without the operator it came from (operator order 2 at
   /// the assembled level: stabilization_storage matrix_free keeps the fit and refreshes).

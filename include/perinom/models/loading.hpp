@@ -156,6 +156,15 @@ struct Loading {
   mutable std::vector<double> lambda_, sum_, remote_;  // scratch of reduce and reactions
 };
 
+/// Throws InputError, naming the field and the entry, unless `loading` fits a model of `dofs`
+/// degrees of freedom: every fixed dof below dofs, value (and rate, value0, support, scale when
+/// given) one entry per fixed dof, force, force0 and the pressure forces empty or dofs entries,
+/// and the couplings a CSR over the constraints (their dofs below dofs in one process). Values
+/// are not read: a NaN load is the solvers' NaN guard's to report. O(fixed + couplings): the
+/// solvers call it once, at their entry. With `with_start` false the stage's start (value0,
+/// force0, pressure_force0) is not checked: a load path's begin_stage sets it anew.
+void check_loading(const Loading& loading, std::size_t dofs, bool with_start = true);
+
 /// One stage of a load path: its loading (values as increments over the stage, forces as
 /// totals at its end; see begin_stage) applied in `steps` equal load steps.
 struct LoadStage {

@@ -22,6 +22,13 @@ struct Families {
   Offset end(std::size_t i) const { return offsets[i + 1]; }
 };
 
+/// Throws InputError unless f is families of a cloud of `particles` particles: one row each,
+/// offsets non-decreasing from 0 to bonds(), every neighbour an index below `particles` and
+/// not the particle itself, support empty or one radius a particle (naming the particle and
+/// the neighbour). Row order is not checked: a rank's local_families are in local ids, not
+/// sorted. O(bonds), once.
+void check_families(const Families& f, std::size_t particles);
+
 /// The dual-support H'_i = { j : i in H_j } in CSR form, with, for each of its entries,
 /// the position of the bond (j, i) in the original family arrays (so per-bond data stored
 /// with the families can be gathered in transposed order).
