@@ -10,8 +10,9 @@
 #include <fstream>
 #include <iterator>
 
-#include "perinom/core/error.hpp"
 #include "diagnostics.hpp"
+#include "perinom/core/error.hpp"
+#include "perinom/io/json_writer.hpp"
 
 namespace perinom::cli {
 namespace {
@@ -162,6 +163,32 @@ RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& sp
   std::sort(foreign_.begin(), foreign_.end());
 }
 
+namespace {
+
+/// Whether `name` in `dir` was written since `start` (by this run).
+bool written_since(const std::string& dir, const std::string& name, fs::file_time_type start) {
+  std::error_code e;
+  const fs::path path = fs::path(dir) / name;
+  return fs::is_regular_file(path, e) && fs::last_write_time(path, e) >= start && !e;
+}
+
+}  // namespace
+
+void RunFolder::record_error(const Scene& scene, const std::string& error, int exit_code) const {
+  if (written_since(dir_, "summary.json", start_)) return;
+  io::Json summary = io::Json::object();
+  summary["status"] = std::string("error");
+  summary["scene"] = scene.source;
+  summary["name"] = scene.name;
+  summary["error"] = error;
+  summary["exit_code"] = exit_code;
+  try {
+    io::write_json_file(dir_ + "/summary.json", summary);
+  } catch (const std::exception&) {
+    // (a full disk, or summary.json a folder: the marker stays and says the run did not end)
+  }
+}
+
 RunFolder::~RunFolder() {
   remove_temporaries(dir_);
   // The manifest: this run's outputs (written since its marker) and the names it carries.
@@ -200,6 +227,12 @@ RunFolder::~RunFolder() {
                    file.c_str(), marker);
       return;
     }
+  }
+  // A folder without its summary is not a finished run: the marker says so.
+  if (!written_since(dir_, "summary.json", start_)) {
+    std::fprintf(stderr, "perinom: warning: %s/summary.json could not be written; %s stays: the run did not end "
+                 "with a summary\n", dir_.c_str(), marker);
+    return;
   }
   fs::remove(dir_ + "/" + marker, ignored);
 }

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "perinom/core/error.hpp"
 #include "perinom/scene/scene.hpp"
 
 namespace perinom::cli {
@@ -54,6 +55,29 @@ class RunFolder {
   const std::vector<std::string>& foreign() const { return foreign_; }
   /// Prints what the start did: the files removed, the foreign ones left.
   void announce() const;
+  /// For an error that ends the run before its summary.json: writes one with status "error",
+  /// the scene's file and name, `error` and the exit code (a long run whose first snapshot
+  /// could not be written left a history and no summary). Nothing when this run wrote its
+  /// summary already, or when it cannot be written (the marker then stays: ~RunFolder).
+  void record_error(const Scene& scene, const std::string& error, int exit_code) const;
+  /// Runs `body`; an error it throws is recorded (record_error, with the exit code perinom
+  /// gives it: 2 bad input or an output that cannot be written, 3 a failed solve, 4 other)
+  /// and thrown on.
+  template <class Body>
+  auto recording_errors(const Scene& scene, Body body) const {
+    try {
+      return body();
+    } catch (const InputError& e) {
+      record_error(scene, e.what(), 2);
+      throw;
+    } catch (const SolveError& e) {
+      record_error(scene, e.what(), 3);
+      throw;
+    } catch (const std::exception& e) {
+      record_error(scene, e.what(), 4);
+      throw;
+    }
+  }
 
  private:
   std::string dir_;

@@ -98,24 +98,8 @@ bool has_surface_load(const Scene& scene) {
                                             [&](const StageSpec& st) { return any(st.boundary); });
 }
 
-}  // namespace
-
-int run(const Options& opt) {
-  if (opt.positional.size() != 1) throw InputError("run needs exactly one scene file");
-  PhaseTimer timer;
-  timer.start("read scene");
-  const Scene scene = read_scene(opt.positional[0], opt.overrides);
-  const MemoryEstimate estimate = estimate_memory(scene);
-  require_memory(scene, estimate, opt.max_memory > 0.0 ? opt.max_memory : available_memory(), opt.max_memory > 0.0);
-  // --restart DIR: the checkpoint is checked against the scene before anything is built,
-  // and the run continues in DIR unless --out names another folder.
-  const std::optional<Restart> restart =
-      opt.restart.empty() ? std::nullopt : std::optional<Restart>(std::in_place, opt.restart, scene);
-  const std::string dir = !opt.out.empty() ? opt.out : restart ? opt.restart : "out/" + scene.name;
-  const bool in_place = restart && restart->in_place(dir);
-  const RunFolder folder(dir, opt.keep, in_place ? restart->files() : std::set<std::string>{},
-                         [&scene](const std::string& name) { return scene_writes(scene, name); });
-  folder.announce();
+int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& estimate,
+                  const std::optional<Restart>& restart, const std::string& dir, PhaseTimer& timer) {
   if (restart) restart->bring_snapshots(dir);
   std::printf("perinom: %s: building particles, families and operators\n", scene.name.c_str());
   std::fflush(stdout);
@@ -305,6 +289,27 @@ int run(const Options& opt) {
                 rep.converged ? "converged" : "NOT converged", static_cast<long long>(rep.iterations),
                 residual_text(rep).c_str(), dir.c_str());
   return rep.converged ? 0 : 1;
+}
+
+}  // namespace
+
+int run(const Options& opt) {
+  if (opt.positional.size() != 1) throw InputError("run needs exactly one scene file");
+  PhaseTimer timer;
+  timer.start("read scene");
+  const Scene scene = read_scene(opt.positional[0], opt.overrides);
+  const MemoryEstimate estimate = estimate_memory(scene);
+  require_memory(scene, estimate, opt.max_memory > 0.0 ? opt.max_memory : available_memory(), opt.max_memory > 0.0);
+  // --restart DIR: the checkpoint is checked against the scene before anything is built,
+  // and the run continues in DIR unless --out names another folder.
+  const std::optional<Restart> restart =
+      opt.restart.empty() ? std::nullopt : std::optional<Restart>(std::in_place, opt.restart, scene);
+  const std::string dir = !opt.out.empty() ? opt.out : restart ? opt.restart : "out/" + scene.name;
+  const bool in_place = restart && restart->in_place(dir);
+  const RunFolder folder(dir, opt.keep, in_place ? restart->files() : std::set<std::string>{},
+                         [&scene](const std::string& name) { return scene_writes(scene, name); });
+  folder.announce();
+  return folder.recording_errors(scene, [&] { return run_in_folder(opt, scene, estimate, restart, dir, timer); });
 }
 
 }  // namespace perinom::cli

@@ -118,6 +118,8 @@ auto alike_on_ranks(const Ranks& world, Phase phase) {
   return std::move(*result);
 }
 
+int run_in_folder(const Options& opt, Scene& scene, const Ranks& world, const std::string& dir, PhaseTimer& timer);
+
 }  // namespace
 
 int run_distributed(const Options& opt) {
@@ -148,6 +150,23 @@ int run_distributed(const Options& opt) {
                    [&scene](const std::string& name) { return scene_writes(scene, name); });
     folder->announce();
   }
+  // An error after this is said in rank 0's summary.json (an error every rank meets ends them
+  // on their own; one rank's ends all of them by MPI_Abort, before any summary).
+  try {
+    return run_in_folder(opt, scene, world, dir, timer);
+  } catch (const InputError& e) {
+    if (folder) folder->record_error(scene, e.what(), 2);
+    throw;
+  } catch (const SolveError& e) {
+    if (folder) folder->record_error(scene, e.what(), 3);
+    throw;
+  }
+}
+
+namespace {
+
+int run_in_folder(const Options& opt, Scene& scene, const Ranks& world, const std::string& dir, PhaseTimer& timer) {
+  const bool root = world.rank == 0;
   barrier();
   std::printf("perinom: %s: building particles, families and operators on %d ranks\n", scene.name.c_str(), world.size);
   std::fflush(stdout);
@@ -357,5 +376,7 @@ int run_distributed(const Options& opt) {
                 residual_text(rep).c_str(), world.size, dir.c_str());
   return rep.converged ? 0 : 1;
 }
+
+}  // namespace
 
 }  // namespace perinom::cli

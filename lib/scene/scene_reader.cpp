@@ -18,6 +18,9 @@
 namespace perinom {
 namespace {
 
+/// The longest scene name: NAME_000000_R.pvtu.tmp must fit a file name's 255 bytes.
+constexpr std::size_t kLongestName = 200;
+
 using detail::Fields;
 
 using detail::axis_of;
@@ -455,6 +458,11 @@ Scene parse_scene(const std::string& text, const std::string& source,
   if (!is_file_name(s.name))
     top.fail("name", "must be made of letters, digits, '_', '-' and '.', and not be '.' or '..' "
                      "(it names the output folder and files)");
+  // Checked before the solve: a name of 241 characters ran a whole solve, then its first
+  // snapshot's file name (NAME_000000.vtu.tmp) was too long for the file system.
+  if (s.name.size() > kLongestName)
+    top.fail("name", "is " + std::to_string(s.name.size()) + " characters long: at most " + std::to_string(kLongestName) +
+                         " (files are named after it, NAME_000000_R.pvtu.tmp, and a file name holds 255 bytes)");
   s.dim = top.small_integer("dimension", 0);
   if (s.dim != 2 && s.dim != 3) top.fail("dimension", "must be 2 or 3");
   read_geometry(top.map("geometry"), s);

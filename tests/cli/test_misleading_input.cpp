@@ -64,6 +64,17 @@ TEST_CASE("the name is a safe file name: letters, digits, _ - . but not . or .."
   CHECK(o.exit_code == 0);
 }
 
+TEST_CASE("a name too long for the file names made from it is refused before the solve", "[cli]") {
+  // 241 characters ran the whole solve, then NAME_000000.vtu.tmp was too long to create.
+  const std::string s = with(tiny_scene, "name: tiny", "name: " + std::string(201, 'n'));
+  require_rejected(s, {at_line(s, "name:", "name: is 201 characters long: at most 200")});
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << with(tiny_scene, "name: tiny", "name: " + std::string(200, 'n'));
+  const Outcome o = perinom(dir, "run scene.yaml --out out");
+  INFO("stdout: " << o.out << "\nstderr: " << o.err);
+  CHECK(o.exit_code == 0);
+}
+
 TEST_CASE("an empty --out is an error, not the default folder", "[cli]") {
   ScratchDir dir;
   std::ofstream(dir.path / "scene.yaml") << tiny_scene;

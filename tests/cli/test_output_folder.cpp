@@ -221,3 +221,29 @@ TEST_CASE("a run that cannot write its list of files leaves its marker, and the 
   CHECK(second.exit_code == 0);
   require_finished_folder(dir.path / "out");
 }
+
+TEST_CASE("an error after the folder is prepared is said in summary.json, and without a summary the marker stays", "[cli]") {
+  // A checkpoint that cannot be written (a folder holds its name) ended the run with exit 2,
+  // a history and no summary, the marker gone: a state the folder's rules did not describe.
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  fs::create_directories(dir.path / "out" / "checkpoint.bin");
+  const Outcome o = perinom(dir, "run scene.yaml --out out --set output.checkpoint_every=10");
+  INFO("stdout: " << o.out << "\nstderr: " << o.err);
+  REQUIRE(o.exit_code == 2);
+  const std::string summary = slurp(dir.path / "out" / "summary.json");
+  CHECK(summary.find("\"status\": \"error\"") != std::string::npos);
+  CHECK(summary.find("\"exit_code\": 2") != std::string::npos);
+  CHECK(summary.find("cannot write checkpoint") != std::string::npos);
+  require_finished_folder(dir.path / "out");
+  // A summary that cannot be written either (a folder holds its name): the marker stays.
+  ScratchDir other;
+  std::ofstream(other.path / "scene.yaml") << tiny_scene;
+  fs::create_directories(other.path / "out" / "checkpoint.bin");
+  fs::create_directories(other.path / "out" / "summary.json");
+  const Outcome none = perinom(other, "run scene.yaml --out out --set output.checkpoint_every=10 --keep");
+  INFO("stdout: " << none.out << "\nstderr: " << none.err);
+  CHECK(none.exit_code == 2);
+  CHECK(fs::exists(other.path / "out" / "run.incomplete"));
+  CHECK(none.err.find("summary.json could not be written; run.incomplete stays") != std::string::npos);
+}
