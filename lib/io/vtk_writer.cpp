@@ -136,7 +136,11 @@ std::string describe_vtk_error(unsigned long code) {
     case vtkErrorCode::CannotOpenFileError: return "VTK cannot open the file";
     case vtkErrorCode::OutOfDiskSpaceError: return "out of disk space";
     case vtkErrorCode::NoError: return "the VTK writer reported failure";
-    default: return "VTK error code " + std::to_string(code);
+    default:
+      // Below VTK's own codes (20000 on) the writer keeps errno: a full disk read "VTK error
+      // code 28".
+      if (code > 0 && code < vtkErrorCode::FirstVTKErrorCode) return std::strerror(static_cast<int>(code));
+      return "VTK error code " + std::to_string(code);
   }
 }
 
@@ -169,7 +173,12 @@ void write_vtu(const std::string& path, int dim, std::size_t n, const double* x,
   writer->SetCompressorTypeToZLib();
   // 64-bit block headers: a large 3-D cloud passes 4 GiB of uncompressed data.
   writer->SetHeaderTypeToUInt64();
+  // VTK's own account of a failed write (a dozen coloured lines of its pipeline's request on
+  // stderr) is left out: the error below names the file and the reason.
+  const int display = vtkObject::GetGlobalWarningDisplay();
+  vtkObject::GlobalWarningDisplayOff();
   const int ok = writer->Write();
+  vtkObject::SetGlobalWarningDisplay(display);
   const unsigned long code = writer->GetErrorCode();
   if (ok != 1 || code != vtkErrorCode::NoError) {
     std::error_code ignored;

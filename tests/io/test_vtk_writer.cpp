@@ -7,7 +7,12 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include <sys/resource.h>
+
+#include <cerrno>
 #include <cmath>
+#include <csignal>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -160,6 +165,34 @@ TEST_CASE("write_vtu into a missing or unwritable folder throws InputError namin
     }
     CHECK(thrown);
   }
+}
+
+TEST_CASE("a write the file system refuses midway names the system reason, not a VTK code", "[io]") {
+  // A full disk read "cannot write VTK file ...: VTK error code 28" (errno ENOSPC), after a
+  // dozen lines of VTK's pipeline request on stderr. A file-size limit makes the same kind of
+  // failure: the writer's write() fails with EFBIG (the SIGXFSZ it raises is ignored here).
+  ScratchDir dir;
+  const std::size_t n = 20000;  // about 0.5 MB of coordinates and a field: past the 4 KiB limit
+  std::vector<double> x(2 * n), f(n);
+  for (std::size_t i = 0; i < n; ++i) x[2 * i] = std::sin(double(i)), x[2 * i + 1] = std::cos(3.0 * i), f[i] = std::tan(i);
+  rlimit before{};
+  REQUIRE(getrlimit(RLIMIT_FSIZE, &before) == 0);
+  const auto handler = std::signal(SIGXFSZ, SIG_IGN);
+  rlimit small = before;
+  small.rlim_cur = 4096;
+  REQUIRE(setrlimit(RLIMIT_FSIZE, &small) == 0);
+  std::string message;
+  try {
+    perinom::io::write_vtu(dir / "big.vtu", 2, n, x.data(), {{"f", 1, f.data()}});
+  } catch (const perinom::InputError& e) {
+    message = e.what();
+  }
+  setrlimit(RLIMIT_FSIZE, &before);
+  std::signal(SIGXFSZ, handler);
+  INFO(message);
+  CHECK_THAT(message, Catch::Contains("big.vtu"));
+  CHECK_THAT(message, Catch::Contains(std::strerror(EFBIG)));
+  CHECK_FALSE(std::filesystem::exists(dir / "big.vtu.tmp"));
 }
 
 TEST_CASE("CsvWriter writes full-precision rows that read back exactly", "[io]") {
