@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
@@ -101,8 +102,8 @@ bool scene_writes(const Scene& scene, const std::string& file_name) {
 
 RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& spare, const OutputNames& writes)
     : dir_(std::move(dir)) {
-  std::error_code ec;
-  fs::create_directories(dir_, ec);
+  std::error_code made, ec;
+  fs::create_directories(dir_, made);
   const std::string path = dir_ + "/" + marker;
   // What the earlier run recorded: its manifest, or, if its marker is left (a run going on,
   // refused below, or killed), the start the marker keeps.
@@ -143,8 +144,10 @@ RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& sp
     std::ofstream f(path, std::ios::trunc);
     f << "perinom run in progress (process " << ::getpid()
       << "); if no perinom is running, the run that wrote this folder was killed\n";
-    if (ec || !f.flush())
-      throw InputError("--out " + dir_ + ": the output folder cannot be created or written");
+    if (made || ec || !f.flush()) {  // with the reason (an --out that is a file said nothing more)
+      const std::string why = made ? made.message() : ec ? ec.message() : std::strerror(errno);
+      throw InputError("--out " + dir_ + ": the output folder cannot be created or written (" + why + ")");
+    }
   }
   start_ = fs::last_write_time(path, ec);
   removed_ = remove_temporaries(dir_);

@@ -240,7 +240,9 @@ TEST_CASE("an unwritable output folder is rejected before the solve", "[cli]") {
   std::ofstream(dir.path / "scene.yaml") << tiny_scene;
   std::ofstream(dir.path / "a_file") << "not a folder\n";
   const Outcome o = perinom(dir, "run scene.yaml --out a_file/out");
-  require_one_clear_error(o, {"--out a_file/out", "cannot be created or written"});
+  require_one_clear_error(o, {"--out a_file/out", "cannot be created or written (Not a directory)"});
+  // An --out that is itself a file: the reason too (it said only "cannot be created or written").
+  require_one_clear_error(perinom(dir, "run scene.yaml --out a_file"), {"--out a_file", "cannot be created or written (Not a directory)"});
 }
 
 TEST_CASE("a missing scene file is named", "[cli]") {
