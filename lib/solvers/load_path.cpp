@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <optional>
 #include <stdexcept>
 
@@ -317,8 +318,12 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
           r.iterations = balance.iterations;
           r.residual = balance.residual;
           if (!ok) {
-            char residual[64];  // (std::to_string's fixed six decimals printed 1.8e-8 as 0.000000)
+            char residual[200];  // (std::to_string's fixed six decimals printed 1.8e-8 as 0.000000)
             std::snprintf(residual, sizeof residual, "%.3e, target %.1e", balance.residual, opt.adr.tolerance);
+            if (balance.residual <= opt.adr.tolerance)  // (the message showed a residual below its target alone)
+              std::snprintf(residual + std::strlen(residual), sizeof residual - std::strlen(residual),
+                            ", met; the displacement change %.3e did not meet solver.displacement_tolerance %.1e",
+                            balance.displacement_change, opt.adr.displacement_tolerance);
             const std::string split = residual_split(model, changes, stage.loading, r.load_factor, u, balance.residual, fint);
             double moved = 0.0;
             for (std::size_t k = 0; k < u.size(); ++k) moved += (u[k] - u_prev[k]) * (u[k] - u_prev[k]);

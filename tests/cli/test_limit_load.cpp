@@ -90,3 +90,17 @@ TEST_CASE("a plastic body that has not yielded is not told it is past its limit 
   CHECK(o.err.find("raise solver.max_iterations or loosen the tolerance") != std::string::npos);
   CHECK(o.err.find("plastic body") == std::string::npos);
 }
+
+TEST_CASE("a balance whose residual met its target names the displacement tolerance it missed", "[cli][plastic]") {
+  // It read "residual 6.581e-10, target 1.0e-09": a residual below its target, and no word of
+  // the displacement change that had not met solver.displacement_tolerance.
+  ScratchDir dir;
+  std::ofstream(dir.path / "column.yaml") << with(with(column, "pressure: 4.0e5", "pressure: 1.0e4"),
+                                                  "max_iterations: 5000",
+                                                  "max_iterations: 300, tolerance: 1.0e-2, displacement_tolerance: 1.0e-30");
+  const Outcome o = perinom(dir, "run column.yaml --out out");
+  INFO(o.out << o.err);
+  CHECK(o.exit_code == 1);
+  CHECK(o.err.find(", target 1.0e-02, met; the displacement change ") != std::string::npos);
+  CHECK(o.err.find("did not meet solver.displacement_tolerance 1.0e-30") != std::string::npos);
+}
