@@ -90,14 +90,6 @@ Json newton_check(Problem& p, const std::vector<double>& u) {
   return j;
 }
 
-bool has_surface_load(const Scene& scene) {
-  auto any = [](const std::vector<BoundarySpec>& list) {
-    return std::any_of(list.begin(), list.end(), [](const BoundarySpec& b) { return b.traction || b.pressure; });
-  };
-  return any(scene.boundary) || std::any_of(scene.stages.begin(), scene.stages.end(),
-                                            [&](const StageSpec& st) { return any(st.boundary); });
-}
-
 int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& estimate,
                   const std::optional<Restart>& restart, const std::string& dir, PhaseTimer& timer) {
   if (restart) restart->bring_snapshots(dir);
@@ -111,7 +103,8 @@ int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& 
     restart->check(p);
     std::printf("perinom: resuming from %s\n", restart->where().c_str());
   }
-  if (scene.model.kinematics == "finite_rotation" && has_surface_load(scene))
+  if (scene.model.kinematics == "finite_rotation" &&
+      scene.any_boundary([](const BoundarySpec& b) { return b.traction || b.pressure; }))
     note("model.kinematics finite_rotation: %s",
                 scene.model.follower_pressure
                     ? "pressures follow the deformed surface; traction vectors stay dead loads (reference area)"

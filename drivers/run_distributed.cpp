@@ -56,13 +56,6 @@
 namespace perinom::cli {
 namespace {
 
-/// Whether a boundary item of the scene or of a stage is `which`.
-template <class Which>
-bool any_boundary(const Scene& s, Which which) {
-  auto any = [&](const std::vector<BoundarySpec>& list) { return std::any_of(list.begin(), list.end(), which); };
-  return any(s.boundary) || std::any_of(s.stages.begin(), s.stages.end(), [&](const StageSpec& st) { return any(st.boundary); });
-}
-
 /// Refuses, naming the key, what the distributed run does not do yet.
 void require_distributed(const Scene& s, const Options& opt) {
   auto refuse = [&](const std::string& key, const std::string& what) {
@@ -82,7 +75,7 @@ void require_distributed(const Scene& s, const Options& opt) {
   // (its force and tangent act on the ranks' facets otherwise than serially: the biaxial
   // example's reactions differed by 0.2%).
   if (s.model.kinematics == "finite_rotation" && s.model.follower_pressure &&
-      any_boundary(s, [](const BoundarySpec& b) { return b.pressure.has_value(); }))
+      s.any_boundary([](const BoundarySpec& b) { return b.pressure.has_value(); }))
     refuse("model.follower_pressure", "a follower pressure (finite_rotation turns pressures with the surface; "
            "follower_pressure: false keeps them in the reference configuration)");
   if (s.model.type == "correspondence" && s.model.formulation != "classical" && s.model.formulation != "consistent")
@@ -96,7 +89,7 @@ void require_distributed(const Scene& s, const Options& opt) {
   if (s.output.checkpoint_every > 0) refuse("output.checkpoint_every", "a checkpoint");
   // Refused here, once, before the build: met in the solver's set-up, every rank said it.
   if ((s.solver.type == "newton" || s.solver.check == "newton") && s.solver.linear_solver == "gamg" &&
-      any_boundary(s, [](const BoundarySpec& b) { return b.at_face; }))
+      s.any_boundary([](const BoundarySpec& b) { return b.at_face; }))
     throw InputError(s.source + ": solver.linear_solver: gamg takes constraints on their particles only over MPI "
                      "ranks (a support at: face makes Newton's system a saddle point there): use mumps");
 }
@@ -152,15 +145,8 @@ int run_distributed(const Options& opt) {
   }
   // An error after this is said in rank 0's summary.json (an error every rank meets ends them
   // on their own; one rank's ends all of them by MPI_Abort, before any summary).
-  try {
-    return run_in_folder(opt, scene, world, dir, timer);
-  } catch (const InputError& e) {
-    if (folder) folder->record_error(scene, e.what(), 2);
-    throw;
-  } catch (const SolveError& e) {
-    if (folder) folder->record_error(scene, e.what(), 3);
-    throw;
-  }
+  const auto body = [&] { return run_in_folder(opt, scene, world, dir, timer); };
+  return folder ? folder->recording_errors(scene, body) : body();
 }
 
 namespace {

@@ -165,6 +165,16 @@ struct Scene {
   /// Solved as a quasi-static load path (solvers/load_path.hpp): a plastic material,
   /// stages, or solver.type lbc.
   bool load_path() const { return plasticity.has_value() || !stages.empty() || solver.type == "lbc"; }
+  /// Whether `which(item)` holds for a boundary item of the scene or of one of its stages.
+  template <class Which>
+  bool any_boundary(Which which) const {
+    for (const BoundarySpec& b : boundary)
+      if (which(b)) return true;
+    for (const StageSpec& stage : stages)
+      for (const BoundarySpec& b : stage.boundary)
+        if (which(b)) return true;
+    return false;
+  }
 };
 
 /// Reads and validates a scene file, after applying `--set dotted.key=value` overrides
