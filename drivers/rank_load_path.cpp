@@ -38,6 +38,7 @@ SolveReport run_rank_load_path(const RankRun& run, DistributedModel& model, std:
   LoadPathOptions opt = load_path_options(scene.solver);
   const NewtonOptions newton = rank_newton_options(scene.solver, run);
   opt.newton.positions = newton.positions, opt.newton.dimension = newton.dimension;
+  opt.diagnose_unstable_state = false;  // (a serial factorization of the whole tangent: not of a rank's part)
   print_load_path_plan(scene, stages, opt);  // (the other ranks' stdout is silenced)
   std::int64_t done = 0;
   StepProgress progress;

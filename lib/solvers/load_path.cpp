@@ -11,6 +11,7 @@
 #include "perinom/core/timer.hpp"
 #include "energy_ledger.hpp"
 #include "load_path_state.hpp"
+#include "unstable_state.hpp"
 
 namespace perinom {
 namespace {
@@ -146,6 +147,10 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
   if (changes) rep.history.columns.push_back("broken_bonds");
   std::vector<double> fint(supports.has_supports() || changes ? model.dofs() : 0), stage_reactions;
   ModelHistory* plastic = model.history();
+  // Why a step failed, when the state it started from (stage's loading at factor s) is unstable.
+  const auto unstable = [&](const LoadStage& stage, double s, const std::vector<double>& state) {
+    return opt.diagnose_unstable_state ? detail::unstable_state(model, stage.loading, s, state) : std::string{};
+  };
   // An elastic body that breaks: the work done on it and the energy its breaks dissipated
   // (external work less the strain energy now; energy_ledger.hpp).
   std::optional<EnergyLedger> ledger;
@@ -261,6 +266,12 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
           xi0 = plastic_strains(model);
           t0 = wall_seconds();
         };
+        int good = 0;  // the stage's last converged step: u holds its state when a step fails
+        const auto commit_step = nopt.after_step;
+        nopt.after_step = [&](int step, const std::vector<double>& un, long iterations, double residual) {
+          commit_step(step, un, iterations, residual);
+          good = step;
+        };
         auto* tangent = dynamic_cast<TangentModel*>(&model);
         if (!tangent) throw std::invalid_argument("solve_load_path: the Newton scheme needs a model with a tangent");
         const SolveReport nr = solve_newton(*tangent, stage.loading, nopt, u, progress);
@@ -268,10 +279,16 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
         keep_floor(nr, rep);
         // (Newton's failures name their load step.)
         const std::string in_stage = stage_name(stage, int(k)) + ": ";
-        if (nr.diverged) throw DivergenceError(in_stage + nr.failure, done + nr.diverged_at);
-        if (!nr.failure.empty())
+        if (nr.diverged)
+          throw DivergenceError(in_stage + nr.failure + unstable(stage, double(good) / stage.steps, u),
+                                done + nr.diverged_at);
+        if (!nr.failure.empty()) {
+          // A body that has not yielded is not past its limit load (a block turned elastically was told so).
+          const bool yielded = plastic != nullptr && plastically_strained(model);
           throw SolveError(in_stage + nr.failure +
-                           (stage.loading.has_force() && plastic ? "; perhaps " + past_capacity(false, true, 0.0) : ""));
+                           (stage.loading.has_force() && yielded ? "; perhaps " + past_capacity(false, true, 0.0) : "") +
+                           unstable(stage, double(good) / stage.steps, u));
+        }
         done += stage.steps;
         continue;
       }
@@ -311,7 +328,7 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
           } catch (const DivergenceError& e) {
             u = u_prev;  // the last good state: the previous load step's
             throw DivergenceError(where(stage, int(k), step) + ": " + e.what() + " (the last good state is load step " +
-                                      std::to_string(done - 1) + ")",
+                                      std::to_string(done - 1) + ")" + unstable(stage, double(step - 1) / stage.steps, u),
                                   done);
           }
           ++r.rounds;
@@ -341,7 +358,8 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
             throw SolveError(where(stage, int(k), step) + ": the balance did not converge in " +
                              std::to_string(balance.iterations) + " ADR iterations (residual " + residual + split +
                              "); raise solver.max_iterations or loosen the tolerance" +
-                             (capacity.empty() ? "" : "; or " + capacity));
+                             (capacity.empty() ? "" : "; or " + capacity) +
+                             unstable(stage, r.rounds > 1 ? r.load_factor : double(step - 1) / stage.steps, u));
           }
           if (changes || plastic) balanced = u;
           if (opt.scheme == LoadPathScheme::lbc && plastic) {

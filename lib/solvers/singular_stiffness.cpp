@@ -17,11 +17,18 @@ std::string singular_stiffness(const Model& model, int step, const std::string& 
   double yielded = std::any_of(xi.begin(), xi.end(), [](double x) { return x > 0.0; }) ? 1.0 : 0.0;
   model.max_across_ranks(&yielded, 1);
   const std::string where = " in load step " + std::to_string(step);
-  // Past the first step the elastic stiffness was regular (it factored then): the trial
-  // states' yielding made it singular, whether or not earlier steps had committed plastic strain.
-  if (yielded > 0.0 || step > 1)
+  if (yielded > 0.0)
     return "Newton: " + singular + where + ", as the body yields: its tangent has lost all stiffness along "
            "a mechanism; the last good state is load step " +
+           std::to_string(step - 1);
+  // Past the first step the stiffness was regular (it factored then) and nothing had yielded:
+  // this step's trial states yield, or the tangent changed with the state (finite rotation:
+  // the stress and the loads turn with the body) through a limit or bifurcation point. A pressed
+  // block under dead pressures, turned elastically, was told it yielded.
+  if (step > 1)
+    return "Newton: " + singular + where + ", where nothing had yielded: either the body yields into a mechanism "
+           "at this step's load, or the tangent has passed a limit or bifurcation point (a body that buckles, "
+           "or is turned under its loads); the last good state is load step " +
            std::to_string(step - 1);
   return "Newton: " + singular + where + ": either a boundary condition is missing (the body can move without "
          "deforming: `run` warns before the solve when the supports leave a rigid motion free), or the body yields "

@@ -436,12 +436,12 @@ TEST_CASE("the plastic state's stored energy is 1/2 sigma : eps in the elastic r
   for (int k = 0; k < 4; ++k) CHECK(P[k] == Approx(Pe[k]).epsilon(1e-12));
 }
 
-TEST_CASE("finite rotation: LBC balances a pressed block turned 30 degrees by a point, its stress turned", "[load_path]") {
-  // Pressed by 200 and 600 kPa (follower pressures), then turned by moving a point 8 mm from
-  // the held centre 4 mm up: 30 degrees. Elastic (a cohesion nothing reaches): the Cauchy
-  // stress is diag(-200, -600) kPa turned by 30 degrees. ADR's mass, from the entries' sums
-  // of the unturned stiffness, fell short of the turned blocks': the balance diverged past
-  // 19 degrees (residual 3.06, "more than the plastic body can carry"), where Newton went on.
+namespace {
+
+// A 22 mm square block pressed by 200 and 600 kPa, then turned by moving a point 8 mm from
+// the held centre 4 mm up: 30 degrees. Elastic (a cohesion nothing reaches). `model` is the
+// scene's model line.
+Problem turned_block(const std::string& model) {
   const std::string path = (std::filesystem::temp_directory_path() / "perinom_turned_block.yaml").string();
   std::ofstream(path) << R"(name: turned_block
 dimension: 2
@@ -449,7 +449,7 @@ geometry: {box: {min: [0.0, 0.0], max: [0.022, 0.022]}}
 discretization: {dx: 0.002, horizon: {ratio: 3.015}}
 material: {type: drucker_prager, E: 30.0e6, nu: 0.25, density: 2000.0, plane: strain, friction_angle: 30.0,
            cohesion: 1.0e12, m0: 0.5, h: 50.0}
-model: {type: correspondence, formulation: consistent, kinematics: finite_rotation}
+)" << model << R"(
 boundary:
   - {region: {point: [0.011, 0.011]}, fix: [x, y]}
 stages:
@@ -471,7 +471,17 @@ stages:
       - {region: {point: [0.019, 0.011]}, displacement: {y: 0.004}}
 solver: {type: lbc}
 )";
-  Problem p = build_problem(read_scene(path));
+  return build_problem(read_scene(path));
+}
+
+}  // namespace
+
+TEST_CASE("finite rotation: LBC balances a pressed block turned 30 degrees by a point, its stress turned", "[load_path]") {
+  // Follower pressures: the Cauchy stress is diag(-200, -600) kPa turned by 30 degrees. ADR's
+  // mass, from the entries' sums of the unturned stiffness, fell short of the turned blocks':
+  // the balance diverged past 19 degrees (residual 3.06, "more than the plastic body can
+  // carry"), where Newton went on.
+  Problem p = turned_block("model: {type: correspondence, formulation: consistent, kinematics: finite_rotation}");
   std::vector<double> u;
   LoadPathOptions o;
   o.adr.tolerance = 1e-9;
@@ -489,4 +499,34 @@ solver: {type: lbc}
   CHECK(si[0] == Approx(sxx).epsilon(1e-4));
   CHECK(si[4] == Approx(syy).epsilon(1e-4));
   CHECK(si[1] == Approx(sxy).epsilon(1e-4));
+}
+
+TEST_CASE("finite rotation: dead pressures on a turned block leave an unstable state, and both solvers say so", "[load_path]") {
+  // The same block under dead pressures: turned, the unturned loads' moment (2 a sin(theta)
+  // (P + Q) per unit thickness) pushes the turn on, and two held particles cannot hold it: the
+  // pressed state itself has a stiffness with one negative eigenvalue (of -1.35e4 N/m; +2.6e3 at
+  // half the pressure). LBC ended in a NaN, and Newton in a singular stiffness blamed on
+  // yielding ("as the body yields ... more than the plastic body can carry") though nothing
+  // yielded.
+  const std::string model =
+      "model: {type: correspondence, formulation: consistent, kinematics: finite_rotation, follower_pressure: false}";
+  for (const auto scheme : {LoadPathScheme::lbc, LoadPathScheme::newton}) {
+    Problem p = turned_block(model);
+    std::vector<double> u;
+    LoadPathOptions o;
+    o.scheme = scheme;
+    o.adr.tolerance = 1e-9;
+    o.adr.max_iterations = 20000;
+    const SolveReport rep = solve_load_path(p.as<CorrespondenceModel>(), p.stages, o, u);
+    INFO(rep.failure);
+    REQUIRE_FALSE(rep.converged);
+    CHECK(rep.failure.find("the state left is an unstable equilibrium") != std::string::npos);
+    CHECK(rep.failure.find("along 1 independent direction ") != std::string::npos);
+    CHECK(rep.failure.find("yields:") == std::string::npos);
+    CHECK(rep.failure.find("plastic body can carry") == std::string::npos);
+    // Without the diagnosis the failure says nothing of it.
+    Problem q = turned_block(model);
+    o.diagnose_unstable_state = false;
+    CHECK(solve_load_path(q.as<CorrespondenceModel>(), q.stages, o, u).failure.find("unstable") == std::string::npos);
+  }
 }
