@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "classical_mesh_note.hpp"
+#include "curved_surface_note.hpp"
 #include "lattice_hole_note.hpp"
 #include "layer_support_note.hpp"
 #include "locking_warning.hpp"
@@ -107,6 +108,7 @@ int check(const Options& opt) {
   if (const std::string thin = thin_body_note(p); !thin.empty()) std::printf("  thin            %s\n", thin.c_str());
   if (const std::string thick = thick_plate_note(p); !thick.empty()) std::printf("  thick           %s\n", thick.c_str());
   if (const std::string hole = lattice_hole_note(p); !hole.empty()) std::printf("  hole            %s\n", hole.c_str());
+  if (const std::string bend = curved_surface_note(p); !bend.empty()) std::printf("  curved          %s\n", bend.c_str());
   if (const std::string tie = point_tie_note(p); !tie.empty()) std::printf("  tie             %s\n", tie.c_str());
   if (const std::string row = precrack_row_note(p); !row.empty()) std::printf("  precrack        %s\n", row.c_str());
   if (const std::string locking = locking_warning(p); !locking.empty())

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "classical_mesh_note.hpp"
+#include "curved_surface_note.hpp"
 #include "diagnostics.hpp"
 #include "lattice_hole_note.hpp"
 #include "layer_support_note.hpp"
@@ -59,6 +60,7 @@ void print_body_notes(const Problem& p) {
   if (const std::string thin = thin_body_note(p); !thin.empty()) note("%s", thin.c_str());
   if (const std::string thick = thick_plate_note(p); !thick.empty()) note("%s", thick.c_str());
   if (const std::string hole = lattice_hole_note(p); !hole.empty()) note("%s", hole.c_str());
+  if (const std::string bend = curved_surface_note(p); !bend.empty()) note("%s", bend.c_str());
   if (const std::string tie = point_tie_note(p); !tie.empty()) note("%s", tie.c_str());
   if (const std::string row = precrack_row_note(p); !row.empty()) note("%s", row.c_str());
   if (const std::string locking = locking_warning(p); !locking.empty())
