@@ -14,7 +14,8 @@ std::string unstable_state(Model& model, const Loading& loading, double s, const
   auto* tangent = dynamic_cast<TangentModel*>(&model);
   if (!tangent || u.size() < tangent->dofs()) return {};
   const std::size_t n = free_dofs(*tangent, loading);
-  if (n == 0 || n > kUnstableStateDofs) return {};
+  const std::size_t most = model.dofs_per_particle() == 3 ? kUnstableStateDofs3D : kUnstableStateDofs2D;
+  if (n == 0 || n > most) return {};
   try {
     model.follow_loads(loading, s);
     tangent->prepare_tangent(u.data());

@@ -32,9 +32,10 @@ struct LoadPathOptions {
   NewtonOptions newton;    ///< tolerances (load_steps and after_step are set per stage)
   double yield_tolerance = 1e-6;  ///< LBC: f > tol * m (A I1 + B) flags a particle
   int max_rounds = 1000;          ///< balance rounds per load step: LBC's corrections and bond breaking
-  /// A failed step's report says whether the state it started from was an unstable equilibrium
-  /// (a stiffness that gives way there; lib/solvers/unstable_state.hpp): a sparse factorization
-  /// of the whole model's tangent, up to 20,000 free dofs. Off for an MPI rank's part.
+  /// A failed step's report says whether the state it left is an unstable equilibrium (a
+  /// stiffness that gives way there; lib/solvers/unstable_state.hpp): a sparse factorization
+  /// of the whole model's tangent, up to 20,000 free dofs in 2-D and 4,000 in 3-D. Off for an
+  /// MPI rank's part.
   bool diagnose_unstable_state = true;
 };
 
