@@ -283,8 +283,9 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
           throw DivergenceError(in_stage + nr.failure + unstable(stage, double(good) / stage.steps, u),
                                 done + nr.diverged_at);
         if (!nr.failure.empty()) {
-          // A body that has not yielded is not past its limit load (a block turned elastically was told so).
-          const bool yielded = plastic != nullptr && plastically_strained(model);
+          // A body turning with its loads that has not yielded is not past its limit load (a block
+          // turned elastically was told so); a small-strain one's stiffness changes only as it yields.
+          const bool yielded = plastic != nullptr && (!model.turns_with_body() || plastically_strained(model));
           throw SolveError(in_stage + nr.failure +
                            (stage.loading.has_force() && yielded ? "; perhaps " + past_capacity(false, true, 0.0) : "") +
                            unstable(stage, double(good) / stage.steps, u));

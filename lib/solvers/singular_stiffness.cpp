@@ -17,14 +17,16 @@ std::string singular_stiffness(const Model& model, int step, const std::string& 
   double yielded = std::any_of(xi.begin(), xi.end(), [](double x) { return x > 0.0; }) ? 1.0 : 0.0;
   model.max_across_ranks(&yielded, 1);
   const std::string where = " in load step " + std::to_string(step);
-  if (yielded > 0.0)
+  // A small-strain body's stiffness changes only as it yields: past the first step (it
+  // factored then) the trial states' yielding made it singular, whether or not earlier steps
+  // had committed plastic strain.
+  if (yielded > 0.0 || (step > 1 && !model.turns_with_body()))
     return "Newton: " + singular + where + ", as the body yields: its tangent has lost all stiffness along "
            "a mechanism; the last good state is load step " +
            std::to_string(step - 1);
-  // Past the first step the stiffness was regular (it factored then) and nothing had yielded:
-  // this step's trial states yield, or the tangent changed with the state (finite rotation:
-  // the stress and the loads turn with the body) through a limit or bifurcation point. A pressed
-  // block under dead pressures, turned elastically, was told it yielded.
+  // Under finite rotation the tangent also changes with the state, through limit and
+  // bifurcation points: a pressed block under dead pressures, turned elastically, was told it
+  // yielded.
   if (step > 1)
     return "Newton: " + singular + where + ", where nothing had yielded: either the body yields into a mechanism "
            "at this step's load, or the tangent has passed a limit or bifurcation point (a body that buckles, "

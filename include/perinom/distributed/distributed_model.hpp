@@ -50,6 +50,7 @@ class DistributedModel : public TangentModel, public ModelHistory {
 
   /// Itself when the local model has history (a plastic law), else nullptr.
   ModelHistory* history() override { return local_.history() ? this : nullptr; }
+  bool turns_with_body() const override { return local_.turns_with_body(); }
   // ModelHistory over the ranks: the local model's, whose near ghosts evaluate the same
   // states as their owners (their families are whole) but in another order, so after every
   // commit and flagging each ghost takes its owner's committed state and flag (the same bits

@@ -232,6 +232,7 @@ class CorrespondenceModel : public LocalModel, public ModelHistory {
   // plasticity eq_plastic_strain, plastic_strain, yielded, lbc_flagged);
   // for probes displacement_gradient and equivalent_strain, and stress_gradient.
   ModelHistory* history() override { return law_->history() ? this : nullptr; }
+  bool turns_with_body() const override { return rotating_; }
   std::vector<OutputField> output_fields(const double* u, bool probe_fields = false,
                                          bool gradients = false) const override;
   std::vector<double> stress_measure(const double* u) const override;

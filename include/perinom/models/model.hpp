@@ -59,6 +59,10 @@ class Model {
   /// model whose answer depends on u alone (elastic).
   virtual ModelHistory* history() { return nullptr; }
   const ModelHistory* history() const { return const_cast<Model*>(this)->history(); }
+  /// Whether the stiffness changes with u before anything yields (finite rotation: the stress
+  /// and follower loads turn with the body), so that a tangent can turn singular at a limit or
+  /// bifurcation point of an elastic state; false for small strain, where only yielding can.
+  virtual bool turns_with_body() const { return false; }
 
   /// The fields a snapshot writes at u, in order (VTK point data, CSV columns). `probe_fields`
   /// adds those only probes read (e.g. the displacement gradient); with `gradients` also the
