@@ -133,6 +133,13 @@ TEST_CASE("a precrack of zero length and a velocity off Verlet or at a face are 
   }
 }
 
+TEST_CASE("a precrack that cuts no bond is refused by its index, also beside one that cuts bonds", "[cli][fracture]") {
+  // The check was on all the cracks together: a second crack off the body was ignored, exit 0.
+  const std::string crack = "  - {from: [-0.0005, 0.005], to: [0.005, 0.005]}\n";
+  const std::string s = with(fracture_scene(), crack, crack + "  - {from: [0.02, 0.02], to: [0.03, 0.02]}\n");
+  require_rejected(s, {"precracks[1] cuts no bond"});
+}
+
 TEST_CASE("a no-fail zone that holds no particle is refused before the run, not ignored", "[cli][fracture]") {
   const std::string zone = "damage: {criterion: instability, s_max: 0.02, no_fail: [{region: ";
   SECTION("an inverted box") {
