@@ -60,6 +60,16 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
                          : changes && changes->stable_step ? changes->stable_step()
                                                            : stable_time_step(model);
   double dt = resume ? resume->dt : opt.dt > 0.0 ? opt.dt : opt.safety * rep.stable_time_step;
+  // A step of 0 ran every step to t = 0 and ended in success; one not finite ran none.
+  if (!(std::isfinite(dt) && dt > 0.0)) {
+    char what[400];
+    std::snprintf(what, sizeof what,
+                  "Verlet: the stable step estimate is %.4g s (2 / omega_max, omega_max^2 the largest stiffness row "
+                  "sum over its lumped mass), so the time step safety x estimate is %.4g s: no step to integrate "
+                  "with (a mass too small or a stiffness too large for double precision)",
+                  rep.stable_time_step, dt);
+    throw StableStepError(what);
+  }
   rep.changes.final_dt = dt;  // (a run resumed at its last step runs no step: it read 0)
   if (progress && !resume && opt.dt > rep.stable_time_step && rep.stable_time_step > 0.0) {
     char what[400];

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 
+#include "perinom/core/error.hpp"
 #include "perinom/core/progress.hpp"
 #include "perinom/models/loading.hpp"
 #include "perinom/models/model.hpp"
@@ -50,6 +51,14 @@ struct VerletState {
   double changed = 0.0, released = 0.0;
   std::int64_t changing_steps = 0, step_reductions = 0;
   std::vector<double> changes;
+};
+
+/// No time step to integrate with: dt = 0 asked for safety times the stable step, and that is
+/// 0 or not finite (a mass too small or a stiffness too large for doubles). Bad input, alike
+/// on every rank (the stable step is the ranks' least); the scene layer names its keys.
+class StableStepError : public InputErrorOnEveryRank {
+ public:
+  using InputErrorOnEveryRank::InputErrorOnEveryRank;
 };
 
 /// The stable step 2 / omega_max, with omega_max^2 bounded by max_i sum_j |K_ij| / m_i
