@@ -125,6 +125,11 @@ int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& 
     warn("model.formulation %s in explicit dynamics (solver.allow_unstable): "
                  "non-symmetric, its energy may grow without bound; the energy-balance guard %s",
                  scene.model.formulation.c_str(), scene.solver.energy_check ? "stops the run if it does" : "is off");
+  // An example's steps shortened by --set keep its damage.every: warned, not refused (as
+  // output.vtk_steps beyond a load path). Bonds are looked at every `every` steps only.
+  if (dynamic && scene.damage && scene.damage->every > scene.solver.steps)
+    warn("damage.every = %lld is beyond solver.steps = %lld: no step looks for bonds to break, and none breaks",
+         static_cast<long long>(scene.damage->every), static_cast<long long>(scene.solver.steps));
 
   io::PvdSeries series(dir, scene.name);
   std::vector<double> u(p.physics().dofs(), 0.0);

@@ -140,6 +140,20 @@ TEST_CASE("a precrack that cuts no bond is refused by its index, also beside one
   require_rejected(s, {"precracks[1] cuts no bond"});
 }
 
+TEST_CASE("damage.every beyond solver.steps is warned: no step looks for bonds to break", "[cli][fracture]") {
+  // It broke nothing and said nothing.
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml")
+      << with(fracture_scene(), "s_max: 0.02}", "s_max: 0.02, every: 50}");
+  const Outcome o = perinom(dir, "run scene.yaml --out out");
+  INFO("stdout: " << o.out << "\nstderr: " << o.err);
+  CHECK(o.exit_code == 0);
+  CHECK(o.out.find("perinom: warning: damage.every = 50 is beyond solver.steps = 20") != std::string::npos);
+  const Outcome within = perinom(dir, "run scene.yaml --out within --set damage.every=20");
+  CHECK(within.exit_code == 0);
+  CHECK(within.out.find("damage.every") == std::string::npos);
+}
+
 TEST_CASE("a no-fail zone that holds no particle is refused before the run, not ignored", "[cli][fracture]") {
   const std::string zone = "damage: {criterion: instability, s_max: 0.02, no_fail: [{region: ";
   SECTION("an inverted box") {
