@@ -14,6 +14,7 @@
 #include "perinom/io/csv_writer.hpp"
 #include "perinom/io/json_writer.hpp"
 #include "perinom/io/vtk_writer.hpp"
+#include "perinom/models/correspondence.hpp"
 #include "perinom/models/model_history.hpp"
 #include "perinom/scene/registry.hpp"
 #include "perinom/solvers/adr.hpp"
@@ -72,6 +73,16 @@ Json probe_results(const Problem& p, const std::vector<double>& u, const std::st
     out[probe.spec.name] = j;
   }
   return out;
+}
+
+/// The note on particles that lost a family spanning the plane (space): by broken bonds or
+/// precracks; `softening` when softening bonds still hold them.
+void note_detached(std::int64_t detached, int dim, bool softening) {
+  if (detached > 0)
+    note("%lld particle(s) lost a family that spans the %s and were detached: they carry no "
+         "stress and %s (summary.json solver.fracture.detached_particles)",
+         static_cast<long long>(detached), dim == 2 ? "plane" : "space",
+         softening ? "only their softening bonds hold them" : "move freely");
 }
 
 /// solver.check: newton. Solves again with Newton and reports how far apart the answers are.
@@ -202,11 +213,7 @@ int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& 
     f["bonds_broken"] = static_cast<long long>(c.broken);
     f["detached_particles"] = static_cast<long long>(c.detached);
     if (c.spent >= 0) f["softening_bonds_spent"] = static_cast<long long>(c.spent), f["opening_limit"] = c.opening_limit;
-    if (c.detached > 0)
-      note("%lld particle(s) lost a family that spans the %s and were detached: they carry no "
-                  "stress and %s (summary.json solver.fracture.detached_particles)",
-                  static_cast<long long>(c.detached), scene.dim == 2 ? "plane" : "space",
-                  c.spent >= 0 ? "only their softening bonds hold them" : "move freely");
+    note_detached(c.detached, scene.dim, c.spent >= 0);
     if (dynamic) f["time_step_reductions"] = static_cast<long long>(c.step_reductions), f["final_time_step"] = c.final_dt;
     if (c.step_reductions > 0)
       note("broken bonds lowered the stable time step %lld time(s); the run kept its ratio to "
@@ -226,6 +233,13 @@ int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& 
       f["looking_step_ratio"] = intact > 0.0 ? (intact + find) / intact : 0.0;
       f["breaking_step_ratio"] = intact > 0.0 ? (intact + find + change) / intact : 0.0;
     }
+    solver["fracture"] = f;
+  } else if (!scene.damage && !scene.precracks.empty()) {
+    // What the precracks detached: loaded, such particles fly off, and the run said nothing.
+    Json f = Json::object();
+    const auto detached = static_cast<std::int64_t>(p.as<CorrespondenceModel>().G().detached().size());
+    f["detached_particles"] = static_cast<long long>(detached);
+    note_detached(detached, scene.dim, false);
     solver["fracture"] = f;
   }
   if (rep.diverged) {
