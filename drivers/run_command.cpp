@@ -14,6 +14,7 @@
 #include "perinom/io/csv_writer.hpp"
 #include "perinom/io/json_writer.hpp"
 #include "perinom/io/vtk_writer.hpp"
+#include "perinom/models/correspondence.hpp"
 #include "perinom/models/model_history.hpp"
 #include "perinom/scene/registry.hpp"
 #include "perinom/solvers/adr.hpp"
@@ -74,6 +75,16 @@ Json probe_results(const Problem& p, const std::vector<double>& u, const std::st
   return out;
 }
 
+/// The note on particles that lost a family spanning the plane (space): by broken bonds or
+/// precracks; `softening` when softening bonds still hold them.
+void note_detached(std::int64_t detached, int dim, bool softening) {
+  if (detached > 0)
+    note("%lld particle(s) lost a family that spans the %s and were detached: they carry no "
+         "stress and %s (summary.json solver.fracture.detached_particles)",
+         static_cast<long long>(detached), dim == 2 ? "plane" : "space",
+         softening ? "only their softening bonds hold them" : "move freely");
+}
+
 /// solver.check: newton. Solves again with Newton and reports how far apart the answers are.
 Json newton_check(Problem& p, const std::vector<double>& u) {
   std::vector<double> un;
@@ -125,6 +136,11 @@ int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& 
     warn("model.formulation %s in explicit dynamics (solver.allow_unstable): "
                  "non-symmetric, its energy may grow without bound; the energy-balance guard %s",
                  scene.model.formulation.c_str(), scene.solver.energy_check ? "stops the run if it does" : "is off");
+  // An example's steps shortened by --set keep its damage.every: warned, not refused (as
+  // output.vtk_steps beyond a load path). Bonds are looked at every `every` steps only.
+  if (dynamic && scene.damage && scene.damage->every > scene.solver.steps)
+    warn("damage.every = %lld is beyond solver.steps = %lld: no step looks for bonds to break, and none breaks",
+         static_cast<long long>(scene.damage->every), static_cast<long long>(scene.solver.steps));
 
   io::PvdSeries series(dir, scene.name);
   std::vector<double> u(p.physics().dofs(), 0.0);
@@ -197,11 +213,7 @@ int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& 
     f["bonds_broken"] = static_cast<long long>(c.broken);
     f["detached_particles"] = static_cast<long long>(c.detached);
     if (c.spent >= 0) f["softening_bonds_spent"] = static_cast<long long>(c.spent), f["opening_limit"] = c.opening_limit;
-    if (c.detached > 0)
-      note("%lld particle(s) lost a family that spans the %s and were detached: they carry no "
-                  "stress and %s (summary.json solver.fracture.detached_particles)",
-                  static_cast<long long>(c.detached), scene.dim == 2 ? "plane" : "space",
-                  c.spent >= 0 ? "only their softening bonds hold them" : "move freely");
+    note_detached(c.detached, scene.dim, c.spent >= 0);
     if (dynamic) f["time_step_reductions"] = static_cast<long long>(c.step_reductions), f["final_time_step"] = c.final_dt;
     if (c.step_reductions > 0)
       note("broken bonds lowered the stable time step %lld time(s); the run kept its ratio to "
@@ -221,6 +233,13 @@ int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& 
       f["looking_step_ratio"] = intact > 0.0 ? (intact + find) / intact : 0.0;
       f["breaking_step_ratio"] = intact > 0.0 ? (intact + find + change) / intact : 0.0;
     }
+    solver["fracture"] = f;
+  } else if (!scene.damage && !scene.precracks.empty()) {
+    // What the precracks detached: loaded, such particles fly off, and the run said nothing.
+    Json f = Json::object();
+    const auto detached = static_cast<std::int64_t>(p.as<CorrespondenceModel>().G().detached().size());
+    f["detached_particles"] = static_cast<long long>(detached);
+    note_detached(detached, scene.dim, false);
     solver["fracture"] = f;
   }
   if (rep.diverged) {

@@ -376,9 +376,12 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   // Precracks cut their bonds as a broken bond is cut (the reader allows them with the
   // classical formulation only).
   if (!s.precracks.empty()) {
-    const std::vector<std::pair<ParticleId, ParticleId>> cut = bonds_crossing(p.cloud, families, s.precracks);
-    if (cut.empty()) throw InputError(s.source + ": precracks: cut no bond (do they cross the body between particles?)");
-    model->cut_bonds(cut);
+    // Each crack on its own: one that cuts nothing was ignored when another cut bonds.
+    for (std::size_t k = 0; k < s.precracks.size(); ++k)
+      if (bonds_crossing(p.cloud, families, {s.precracks[k]}).empty())
+        throw InputError(s.source + ": precracks[" + std::to_string(k) +
+                         "] cuts no bond (does it cross the body between particles?)");
+    model->cut_bonds(bonds_crossing(p.cloud, families, s.precracks));
   }
   // The loads see the trace's facets (the consistent formulation) or the body's own.
   BoundaryData data{model->trace().empty() ? &body.facets : &model->trace().facets(), &p.groups, &model->trace()};

@@ -100,8 +100,17 @@ std::vector<SolverEntry> make_solvers() {
     std::vector<double> v;
     std::optional<SceneBreaking> breaking;
     if (p.scene.damage) breaking.emplace(p);
-    SolveReport r = solve_verlet(p.physics(), p.loading, verlet_options(p.scene.solver), u, v, h.progress, h.observe,
-                                 h.verlet_checkpoints, h.verlet_resume, breaking ? &breaking->changes() : nullptr);
+    SolveReport r;
+    try {
+      r = solve_verlet(p.physics(), p.loading, verlet_options(p.scene.solver), u, v, h.progress, h.observe,
+                       h.verlet_checkpoints, h.verlet_resume, breaking ? &breaking->changes() : nullptr);
+    } catch (const StableStepError& e) {
+      // The masses and stiffnesses come from these keys (and dx, which scales both alike).
+      char keys[200];
+      std::snprintf(keys, sizeof keys, "material.density = %.4g kg/m^3 with material.E = %.4g Pa give no time step: ",
+                    p.scene.material.density, p.scene.material.E);
+      throw InputErrorOnEveryRank(p.scene.source + ": " + keys + e.what());
+    }
     if (breaking) breaking->report(r, true);
     return r;
   };

@@ -133,6 +133,41 @@ TEST_CASE("a precrack of zero length and a velocity off Verlet or at a face are 
   }
 }
 
+TEST_CASE("a precrack that cuts no bond is refused by its index, also beside one that cuts bonds", "[cli][fracture]") {
+  // The check was on all the cracks together: a second crack off the body was ignored, exit 0.
+  const std::string crack = "  - {from: [-0.0005, 0.005], to: [0.005, 0.005]}\n";
+  const std::string s = with(fracture_scene(), crack, crack + "  - {from: [0.02, 0.02], to: [0.03, 0.02]}\n");
+  require_rejected(s, {"precracks[1] cuts no bond"});
+}
+
+TEST_CASE("damage.every beyond solver.steps is warned: no step looks for bonds to break", "[cli][fracture]") {
+  // It broke nothing and said nothing.
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml")
+      << with(fracture_scene(), "s_max: 0.02}", "s_max: 0.02, every: 50}");
+  const Outcome o = perinom(dir, "run scene.yaml --out out");
+  INFO("stdout: " << o.out << "\nstderr: " << o.err);
+  CHECK(o.exit_code == 0);
+  CHECK(o.out.find("perinom: warning: damage.every = 50 is beyond solver.steps = 20") != std::string::npos);
+  const Outcome within = perinom(dir, "run scene.yaml --out within --set damage.every=20");
+  CHECK(within.exit_code == 0);
+  CHECK(within.out.find("damage.every") == std::string::npos);
+}
+
+TEST_CASE("a run without damage names the particles its precracks detached, as one with damage does", "[cli][fracture]") {
+  // Two cracks around the corner particle cut all its bonds; only check said so before.
+  const std::string corner = "  - {from: [-0.001, 0.001], to: [0.001, 0.001]}\n  - {from: [0.001, -0.001], to: [0.001, 0.001]}\n";
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml")
+      << with(with(fracture_scene(), "damage: {criterion: instability, s_max: 0.02}\n", ""),
+              "  - {from: [-0.0005, 0.005], to: [0.005, 0.005]}\n", corner);
+  const Outcome o = perinom(dir, "run scene.yaml --out out");
+  INFO("stdout: " << o.out << "\nstderr: " << o.err);
+  REQUIRE(o.exit_code == 0);
+  CHECK(o.out.find("perinom: note: 1 particle(s) lost a family that spans the plane and were detached") != std::string::npos);
+  CHECK(json_number(slurp(dir.path / "out" / "summary.json"), "detached_particles") == 1.0);
+}
+
 TEST_CASE("a no-fail zone that holds no particle is refused before the run, not ignored", "[cli][fracture]") {
   const std::string zone = "damage: {criterion: instability, s_max: 0.02, no_fail: [{region: ";
   SECTION("an inverted box") {

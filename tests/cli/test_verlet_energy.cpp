@@ -100,6 +100,17 @@ TEST_CASE("a Verlet run that diverges with a given dt above the stable step esti
   CHECK(warned < bold.out.find("results in"));
 }
 
+TEST_CASE("a Verlet run whose stable step is 0 is refused by the key that made it, never a success", "[cli][verlet]") {
+  // A density of 1e-300 made the stable step 0: "100 steps to t = 0 s", exit 0.
+  const Outcome o = bar("zero_step", "run", "--out out --set material.density=1e-300 --set solver.steps=100");
+  INFO(o.out << o.err);
+  CHECK(o.exit_code == 2);
+  CHECK(o.err.find("perinom: error: ") == 0);
+  CHECK(o.err.find("material.density = 1e-300 kg/m^3") != std::string::npos);
+  CHECK(o.err.find("no step to integrate with") != std::string::npos);
+  CHECK(o.out.find("steps to t =") == std::string::npos);
+}
+
 TEST_CASE("a Verlet run that ends before its ramp_time says how far its loads got", "[cli][verlet]") {
   // 100 steps of about 1.5e-7 s against a ramp of 1e-4 s: the loads reach about 15%.
   const Outcome o = bar("ramp", "run", "--out out --set solver.steps=100 --set solver.ramp_time=1.0e-4");

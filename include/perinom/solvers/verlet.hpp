@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 
+#include "perinom/core/error.hpp"
 #include "perinom/core/progress.hpp"
 #include "perinom/models/loading.hpp"
 #include "perinom/models/model.hpp"
@@ -18,14 +19,15 @@ struct VerletOptions {
   double ramp_time = 0.0;       ///< loads ramp linearly to full over this time (s); 0: at once
   std::int64_t history_every = 10;
   /// The energy-balance guard: at every history row, the run stops (SolveError, exit 3)
-  /// when |E - E0 - W| > energy_tolerance * max(max W, max E) + energy_floor, with E the
-  /// kinetic plus strain energy, E0 its initial value, W the work of the loads and of the
-  /// constraints so far, and the maxima over the rows so far. Verlet's own energy error at a
+  /// when |E - E0 - W| > energy_tolerance * max(max W, max E) + R, with E the kinetic plus
+  /// strain energy, E0 its initial value, W the work of the loads and of the constraints so
+  /// far, the maxima over the rows so far, and R the rounding floor of the state: eps
+  /// omega_max^2 sum_k m_k u_k^2 / 2, a bound of the size of the terms the strain energy and
+  /// the constraints' work sum (omega_max = 2 / the stable step). Verlet's own energy error at a
   /// stable step is a few percent at most; a discrete problem with negative or complex
   /// eigenvalues (the improved and strong formulations) gains energy no load supplied.
   bool energy_check = true;
   double energy_tolerance = 0.5;
-  double energy_floor = 1e-20;  ///< J: keeps an all-zero run from tripping on rounding
 };
 
 /// What solve_verlet carries from one step to the next, taken at the end of a step: with it
@@ -49,6 +51,14 @@ struct VerletState {
   double changed = 0.0, released = 0.0;
   std::int64_t changing_steps = 0, step_reductions = 0;
   std::vector<double> changes;
+};
+
+/// No time step to integrate with: dt = 0 asked for safety times the stable step, and that is
+/// 0 or not finite (a mass too small or a stiffness too large for doubles). Bad input, alike
+/// on every rank (the stable step is the ranks' least); the scene layer names its keys.
+class StableStepError : public InputErrorOnEveryRank {
+ public:
+  using InputErrorOnEveryRank::InputErrorOnEveryRank;
 };
 
 /// The stable step 2 / omega_max, with omega_max^2 bounded by max_i sum_j |K_ij| / m_i
