@@ -158,11 +158,19 @@ void read_elements(Tokens& t, GmshMesh& m, const std::unordered_map<long long, s
              " is not read: perinom takes first-order points, lines, triangles, quadrangles, "
              "tetrahedra, hexahedra, prisms and pyramids (mesh with Mesh.ElementOrder = 1)");
     for (long long k = 0; k < n; ++k) {
-      t.integer("an element tag");
+      const long long element = t.integer("an element tag");
+      const std::size_t first = m.node_index.size();
       for (int v = 0; v < nodes; ++v) {
         const long long tag = t.integer("an element's node tag");
         const auto it = index.find(tag);
         if (it == index.end()) t.fail("an element refers to node " + std::to_string(tag) + ", which is not defined");
+        // A collapsed element (a quadrangle 1 2 13 13) has a zero-length edge: a 2-D body ran
+        // 16% off the patch test with a facet of zero length, a 3-D one ended in NaN stresses.
+        for (std::size_t w = first; w < m.node_index.size(); ++w)
+          if (m.node_index[w] == it->second)
+            t.fail("element " + std::to_string(element) + " lists node " + std::to_string(tag) +
+                   " twice: a collapsed element is refused; give it as the element of fewer nodes it "
+                   "has become (a triangle, a prism, a pyramid) or remesh");
         m.node_index.push_back(it->second);
       }
       m.type.push_back(type);

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
 
 #include "perinom/core/error.hpp"
+#include "perinom/geometry/mesh_nodes.hpp"
 
 namespace perinom {
 namespace {
@@ -86,8 +86,12 @@ class Builder {
   Vec point(std::size_t node) const { return {{m_.x[3 * node], m_.x[3 * node + 1], m_.x[3 * node + 2]}}; }
 
   Body build() {
-    // First: a 3-D mesh in a 2-D scene otherwise met "element 1 ... has zero area".
-    if (dim_ == 2) check_planar();
+    // First: a 3-D mesh in a 2-D scene otherwise met "element 1 ... has zero area". Only the
+    // nodes the body's elements use count: an unused construction point off the plane is no
+    // part of it.
+    const std::vector<std::size_t> nodes = used_nodes(m_, dim_);
+    if (dim_ == 2) check_planar(m_, nodes);
+    check_distinct_nodes(m_, nodes);
     for (std::size_t e = 0; e < m_.elements(); ++e)
       if (gmsh_element_shape(m_.type[e]).first == dim_) add_element(e);
     if (body_.cloud.size() == 0)
@@ -175,20 +179,6 @@ class Builder {
         for (int a = 0; a < 3; ++a) p.area[a] *= sign * (dim_ == 2 ? thickness_ : 1.0);
       faces_[f.first].push_back(pieces_.size());
       pieces_.push_back({particle, std::move(f.second)});
-    }
-  }
-
-  void check_planar() const {
-    double lo = INFINITY, hi = -INFINITY, extent = 0.0;
-    for (std::size_t v = 0; v < m_.nodes(); ++v) {
-      lo = std::min(lo, m_.x[3 * v + 2]), hi = std::max(hi, m_.x[3 * v + 2]);
-      extent = std::max({extent, std::abs(m_.x[3 * v]), std::abs(m_.x[3 * v + 1])});
-    }
-    if (hi - lo > 1e-12 * extent) {
-      char span[200];  // (%g: a span of 2e-9 m printed by std::to_string read 0.000000 to 0.000000)
-      std::snprintf(span, sizeof span, "its nodes' z spans %.6g to %.6g m, more than 1e-12 of its extent %.6g m", lo, hi,
-                    extent);
-      throw InputError(std::string("a 2-D scene needs a mesh in a plane z = const (") + span + ")");
     }
   }
 

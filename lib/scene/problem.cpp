@@ -90,7 +90,7 @@ Body read_body(const Scene& s) {
   body.cloud.dx = s.discretization.dx;
   if (!f.facets.empty()) {
     try {
-      read_facet_file(f.facets, body);
+      read_facet_file(f.facets, body, s.geometry.thickness);
     } catch (const InputError& e) {
       throw InputError(f.facets_where + ": " + f.facets + ": " + e.what());
     }

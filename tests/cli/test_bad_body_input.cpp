@@ -180,6 +180,24 @@ TEST_CASE("a point file runs classical, and the consistent formulation needs its
   require_rejected(points_scene, {"geometry.points", "line 1", "x,y,volume"}, {{"cloud.csv", "x,y,v\n0,0,1\n"}});
 }
 
+TEST_CASE("a facet far from its particle is refused naming its line", "[cli][mesh]") {
+  // The right facet of particle 15, at (0.004, 0.0035), given to particle 0 at (0.0005, 0.0005):
+  // 4.6 particle sizes away. The divergence theorem sees only the facets and held; on a
+  // 10 x 10 plate such a facet moved a shear answer by 2.5% with exit 0.
+  const std::string scene =
+      with(with(points_scene, "  points: cloud.csv\n", "  points: cloud.csv\n  facets: facets.csv\n"),
+           "model: {formulation: classical, operator_order: 1}\n", "");
+  const std::string moved = with(facets_csv(), "\n15,0.001,1,0,0.004,0.003500,right", "\n0,0.001,1,0,0.004,0.003500,right");
+  require_rejected(scene,
+                   {"geometry.facets", "facets.csv: line 17", "from its particle 0 at (0.0005, 0.0005), more than 4 times",
+                    "(volume / thickness)^(1/2) = 0.001 m"},
+                   {{"cloud.csv", points_csv()}, {"facets.csv", moved}});
+  const MeshDir kept(scene, {{"cloud.csv", points_csv()}, {"facets.csv", facets_csv()}});
+  const Outcome o = kept.check();
+  INFO("stderr: " << o.err);
+  CHECK(o.exit_code == 0);
+}
+
 TEST_CASE("a point given twice is named by its two lines, and a dx beyond the body is refused", "[cli][mesh]") {
   // A repeated line ran 6% off (constant influence) or met a singular shape tensor whose
   // message blamed the horizon; a dx of 0.5 m on a 20 mm mesh bonded every particle to every

@@ -41,8 +41,9 @@ std::pair<int, int> gmsh_element_shape(int type);
 
 /// Reads a .msh file of format 4.1, ASCII. Throws InputError ("line N: ...", without the
 /// path) for a file that cannot be read, another version, the binary form, a partitioned
-/// mesh, or an element type other than the first-order ones above (higher-order meshes are
-/// refused: mesh with Mesh.ElementOrder = 1).
+/// mesh, an element type other than the first-order ones above (higher-order meshes are
+/// refused: mesh with Mesh.ElementOrder = 1), or an element that lists a node twice (a
+/// collapsed element, named by its gmsh tag).
 GmshMesh read_gmsh(const std::string& path);
 
 }  // namespace perinom

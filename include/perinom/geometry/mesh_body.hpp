@@ -23,7 +23,8 @@ namespace perinom {
 ///   facet belongs to the groups of the mesh element lying on its face. Facet side codes are
 ///   100 + the index of its first group (BoundaryFacets::side), or -1 outside every group.
 /// Throws InputError (without a key) for a mesh with no element of dimension dim, a
-/// degenerate element, a face shared by more than two elements, or a 2-D mesh off a plane.
+/// degenerate element, a face shared by more than two elements, a 2-D mesh off a plane, or
+/// two of its nodes at one point (mesh_nodes.hpp).
 Body mesh_body(const GmshMesh& mesh, int dim, double thickness);
 
 }  // namespace perinom

@@ -18,7 +18,9 @@ PointCloud read_point_file(const std::string& path, int dim);
 /// followed by `group`; then one facet per line: the owning particle (0-based line of the
 /// point file), area (m^2; 2-D: length times thickness), outward normal (normalized on
 /// reading), centroid (m), and the name of its group (empty: none). Groups are listed in
-/// the order first met. Facet side codes are 100 + the group index, or -1.
-void read_facet_file(const std::string& path, Body& body);
+/// the order first met. Facet side codes are 100 + the group index, or -1. A facet farther
+/// from its particle i than 4 (V_i / thickness)^(1/d) (thickness 1 in 3-D; m) is refused: a
+/// facet lies on its particle's cell, and the bound admits cells of aspect ratio up to 64.
+void read_facet_file(const std::string& path, Body& body, double thickness);
 
 }  // namespace perinom
