@@ -1,6 +1,7 @@
 // A point pressure on a thin plate, as a user meets it: the node nearest the point takes it,
 // as a correspondence point region's particle does, so a point off the plate is refused by
-// the same check. Each test runs the real binary in its own temporary folder.
+// the same check and a point midway between nodes gets the same tie note. Each test runs the
+// real binary in its own temporary folder.
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -50,4 +51,26 @@ TEST_CASE("a plate point load off the plate is refused by its key, as a correspo
                                "  - {region: top, support: simply_supported}\n");
     require_rejected(s, {at_line(s, "point: [2.0", "boundary[4]." + needle), "outside the body"});
   }
+}
+
+TEST_CASE("a plate point load midway between two nodes is noted by run and check", "[cli][plate]") {
+  // 0.2625 lies midway between the nodes at 0.25 and 0.275: the lower-numbered took the load
+  // without a word.
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << point_loaded_plate("[0.2625, 0.25]");
+  const std::string tie = "boundary.2.region.point is as near 2 particles: particle ";
+  const Outcome checked = perinom(dir, "check scene.yaml");
+  INFO(checked.out << checked.err);
+  CHECK(checked.exit_code == 0);
+  CHECK(checked.out.find("  tie             " + tie) != std::string::npos);
+  CHECK(checked.out.find("0.0125 m from the point") != std::string::npos);
+  const Outcome ran = perinom(dir, "run scene.yaml --out out");
+  INFO(ran.out << ran.err);
+  CHECK(ran.exit_code == 0);
+  CHECK(ran.out.find("perinom: note: " + tie) != std::string::npos);
+  // A point on a node is no tie.
+  std::ofstream(dir.path / "on_node.yaml") << point_loaded_plate("[0.25, 0.25]");
+  const Outcome on = perinom(dir, "check on_node.yaml");
+  CHECK(on.exit_code == 0);
+  CHECK(on.out.find("region.point is as near") == std::string::npos);
 }
