@@ -11,7 +11,8 @@ namespace perinom::cli {
 
 std::string point_tie_note(const Problem& p) {
   const Scene& s = p.scene;
-  if (s.model.type != "correspondence" || p.cloud.size() == 0) return "";
+  // A plate's point pressure takes the nearest node as a correspondence point region does.
+  if ((s.model.type != "correspondence" && s.model.type != "thin_plate") || p.cloud.size() == 0) return "";
   std::vector<const BoundarySpec*> items;
   for (const auto& b : s.boundary) items.push_back(&b);
   for (const auto& stage : s.stages)

@@ -2,7 +2,8 @@
 // A point region midway between particles takes the lowest-numbered (region.hpp): the notched
 // beam's supports, midway between two columns at every spacing, sat half a spacing from their
 // points, and until the ties were broken alike rounding put them on either side (its span
-// 122.5 mm at dx 2.5 mm). Run and check now say where such a point region lands.
+// 122.5 mm at dx 2.5 mm). Run and check now say where such a point region lands, a thin
+// plate's point pressure included.
 #include <string>
 
 #include "perinom/scene/problem.hpp"

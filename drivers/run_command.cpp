@@ -259,9 +259,19 @@ int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& 
   }
   if (scene.solver.check == "newton" && failure.empty()) {
     timer.start("newton check");
-    summary["check"] = !scene.load_path() ? newton_check(p, u)
-                       : scene.damage  ? damaged_newton_check(p, u)
-                                       : load_path_newton_check(p, u, probe_history);
+    // A check Newton refuses (a singular stiffness: a support missing) is the check's failure:
+    // it once ended the run with exit 2 and a summary that had lost the solve's record.
+    try {
+      summary["check"] = !scene.load_path() ? newton_check(p, u)
+                         : scene.damage  ? damaged_newton_check(p, u)
+                                         : load_path_newton_check(p, u, probe_history);
+    } catch (const InputError& e) {
+      Json check = Json::object();
+      check["newton_converged"] = false;
+      check["newton_error"] = e.what();
+      summary["check"] = check;
+      warn("solver.check: newton could not solve: %s (summary.json check.newton_error)", e.what());
+    }
     timer.start("output");
   }
   if (const ModelHistory* history = p.physics().history()) summary["plasticity"] = plastic_summary(p.physics(), *history);

@@ -1,5 +1,6 @@
-// What the drivers ask of a thin plate through Model: its output fields, its moments as the
-// stress measure, and its lines of the plan (rigidity, nodes and ghosts, edges).
+// What the drivers and solvers ask of a thin plate through Model: its output fields, its
+// moments as the stress measure, its lines of the plan (rigidity, nodes and ghosts, edges),
+// and the supports that stop its rigid motions.
 #include <cstdio>
 
 #include "perinom/models/thin_plate.hpp"
@@ -62,6 +63,17 @@ std::vector<std::string> ThinPlateModel::not_assembled() const {
   std::vector<std::string> items = {"gradient operator G and stabilization S of elasticity (no correspondence model)"};
   if (opt_.stabilization <= 0.0) items.push_back("plate stabilization (C_hg = 0)");
   return items;
+}
+
+std::string ThinPlateModel::support_advice() const {
+  const PlateEdges& e = opt_.edges;
+  char advice[400];
+  std::snprintf(advice, sizeof advice,
+                "support more edges, boundary items {region: left, right, bottom or top, support: simply_supported or "
+                "clamped}, to stop the plate translating along z and turning about axes in its plane (a plate takes "
+                "no fix); its edges now: left %s, right %s, bottom %s, top %s",
+                support_name(e[0]), support_name(e[1]), support_name(e[2]), support_name(e[3]));
+  return advice;
 }
 
 }  // namespace perinom

@@ -10,6 +10,7 @@
 #include "perinom/core/error.hpp"
 #include "perinom/core/memory.hpp"
 #include "perinom/core/parallel.hpp"
+#include "perinom/solvers/vector_ops.hpp"
 
 namespace perinom {
 
@@ -103,13 +104,18 @@ SolveReport solve_direct(TangentModel& model, const Loading& loading, std::vecto
     step = llt.solve(reduced);
     rep.iterations = 2 + round;
   }
-  for (const double v : u)
-    if (!std::isfinite(v)) {
-      rep.failure = "the direct solve produced a NaN or Inf";
-      rep.diverged = true;
-      if (progress) progress->finish();
-      return rep;
-    }
+  // The guard of ADR and Newton: a displacement whose sum of squares is not finite (an entry
+  // past about 1e154) is never kept. A plate 1e-100 m thick "converged" at w = 1.3e289 m.
+  if (!std::isfinite(rep.residual) || !std::isfinite(norm(u))) {
+    u.assign(n_all, 0.0);
+    rep.iterations = 0;  // the last good state: the unloaded one
+    rep.diverged = true;
+    rep.diverged_at = 1;
+    rep.failure = "direct: the displacement became NaN or Inf (its sum of squares overflows) in the solve; the last "
+                  "good state is the unloaded one";
+    if (progress) progress->finish();
+    return rep;
+  }
   // One history row, with the supports' reactions as Newton reports them.
   rep.history.add({rep.residual});
   if (loading.has_supports()) {

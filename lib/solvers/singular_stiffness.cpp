@@ -12,7 +12,7 @@ std::string singular_stiffness(const Model& model, int step, const std::string& 
   const ModelHistory* plastic = model.history();
   if (!plastic)
     throw InputErrorOnEveryRank("Newton: " + singular + ": the body can move without deforming; a boundary condition is "
-                     "probably missing (fix enough components to stop rigid translation and rotation)");
+                     "probably missing (" + model.support_advice() + ")");
   const std::vector<double> xi = plastic->history_variable();
   double yielded = std::any_of(xi.begin(), xi.end(), [](double x) { return x > 0.0; }) ? 1.0 : 0.0;
   model.max_across_ranks(&yielded, 1);

@@ -1,6 +1,7 @@
 // The warning of a static run whose supports leave a rigid motion free, as a user meets it,
 // on the vibrating bar of the examples (left end held, right end pulled) solved by ADR, and
-// on the simply supported plate of the examples with one edge left supported. Each test runs
+// on the simply supported plate of the examples with one edge left supported, whose singular
+// stiffness Newton names by a plate's supports, in a run or in its check. Each test runs
 // the real binary in its own temporary folder.
 #include <catch2/catch.hpp>
 
@@ -60,4 +61,49 @@ TEST_CASE("a plate supported along one edge only is told it can turn about that 
     CHECK(held.exit_code == 0);
     CHECK(held.out.find("rigid motion") == std::string::npos);
   }
+}
+
+namespace {
+
+/// The simply supported plate of the examples with its left edge supported only.
+std::string hinged_plate() {
+  std::string scene = cli_test::slurp(PERINOM_SOURCE_DIR "/examples/thin_plate_simply_supported.yaml");
+  for (const char* edge : {"right", "bottom", "top"})
+    scene = cli_test::with(scene, "  - {region: " + std::string(edge) + ", support: simply_supported}\n", "");
+  return scene;
+}
+
+}  // namespace
+
+TEST_CASE("a singular plate stiffness names the supports a plate takes, not fix", "[cli][supports][plate]") {
+  // It said "fix enough components to stop rigid translation and rotation", and fix is refused
+  // on a plate.
+  cli_test::ScratchDir d;
+  std::ofstream(d.path / "scene.yaml") << hinged_plate();
+  const cli_test::Outcome o = cli_test::perinom(d, "run scene.yaml --out out --set solver.type=newton");
+  INFO(o.out << o.err);
+  CHECK(o.exit_code == 2);
+  CHECK(o.err.find("Newton: the stiffness is singular") != std::string::npos);
+  CHECK(o.err.find("support: simply_supported or clamped") != std::string::npos);
+  CHECK(o.err.find("its edges now: left simply supported, right free, bottom free, top free") != std::string::npos);
+  CHECK(o.err.find("fix enough components") == std::string::npos);
+}
+
+TEST_CASE("a Newton check that meets a singular stiffness is recorded beside the solve it checked", "[cli][supports][plate]") {
+  // ADR stops at its iteration limit (exit 1); the check's Newton then refused the singular
+  // stiffness, which ended the run with exit 2 and a summary without the ADR solve or probes.
+  cli_test::ScratchDir d;
+  std::ofstream(d.path / "scene.yaml") << hinged_plate();
+  const cli_test::Outcome o =
+      cli_test::perinom(d, "run scene.yaml --out out --set solver.check=newton --set solver.max_iterations=2000");
+  INFO(o.out << o.err);
+  CHECK(o.exit_code == 1);
+  CHECK(o.out.find("perinom: warning: solver.check: newton could not solve: Newton: the stiffness is singular") !=
+        std::string::npos);
+  const std::string summary = cli_test::slurp(d.path / "out" / "summary.json");
+  CHECK(summary.find("\"status\": \"not_converged\"") != std::string::npos);
+  CHECK(summary.find("\"type\": \"adr\"") != std::string::npos);
+  CHECK(summary.find("\"iterations\": 2000") != std::string::npos);
+  CHECK(summary.find("\"center_w\": ") != std::string::npos);
+  CHECK(summary.find("\"newton_error\": \"Newton: the stiffness is singular") != std::string::npos);
 }

@@ -1,7 +1,7 @@
 // solver.type direct: one Cholesky factorization of the Galerkin-reduced stiffness gives
 // Newton's answer on linear problems (plain and face-located constraints, prescribed
-// displacements, orders 1 and 2, the thin plate), and refuses what is not linear and
-// symmetric.
+// displacements, orders 1 and 2, the thin plate), refuses what is not linear and
+// symmetric, and keeps no overflowing answer.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -118,6 +118,24 @@ TEST_CASE("a direct solve with a rigid mode left free stops with exit 3, naming 
   CHECK(o.exit_code == 3);
   CHECK(o.err.find("not positive definite") != std::string::npos);
   CHECK(test_support::slurp(dir.path / "out" / "summary.json").find("\"status\": \"not_converged\"") != std::string::npos);
+}
+
+TEST_CASE("a direct solve whose deflection overflows is a diverged solve, exit 3, as by ADR or Newton",
+          "[solvers][direct][cli][plate]") {
+  // A plate 1e-100 m thick: D0 ~ 1e-290 N m, the deflection ~ 1e285 m, its sum of squares
+  // infinite. It ended "converged", exit 0, with that deflection in the probe.
+  const std::string thin = cli_test::with(test::small_plate, "thickness: 0.002", "thickness: 1.0e-100");
+  cli_test::ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml")
+      << thin + "solver: {type: direct}\nprobes:\n  - {name: mid, point: [0.05, 0.05], field: deflection}\n";
+  const cli_test::Outcome o = cli_test::perinom(dir, "run scene.yaml --out out");
+  INFO(o.out << o.err);
+  CHECK(o.exit_code == 3);
+  CHECK(o.err.find("direct: the displacement became NaN or Inf") != std::string::npos);
+  const std::string summary = test_support::slurp(dir.path / "out" / "summary.json");
+  CHECK(summary.find("\"status\": \"diverged\"") != std::string::npos);
+  CHECK(summary.find("\"mid\": 0") != std::string::npos);  // the last good state: unloaded
+  CHECK(summary.find("null") == std::string::npos);
 }
 
 TEST_CASE("the direct solve refines on its factor while the residual is above the tolerance, never making it worse",

@@ -35,6 +35,7 @@ class DistributedModel : public TangentModel, public ModelHistory {
   std::vector<OutputField> output_fields(const double* u, bool probe_fields = false,
                                          bool gradients = false) const override;
   std::vector<double> stress_measure(const double* u) const override;  ///< the owned particles'
+  std::string support_advice() const override { return local_.support_advice(); }
   void sum_across_ranks(double* values, int count) const override { sum_over_ranks(values, count); }
   void max_across_ranks(double* values, int count) const override { max_over_ranks(values, count); }
 

@@ -84,6 +84,11 @@ class Model {
   virtual std::vector<PlanLine> plan() const { return {}; }
   /// What the model does not assemble: the items of the plan's "not assembled:" line.
   virtual std::vector<std::string> not_assembled() const { return {}; }
+  /// What stops the body's rigid motions, in the scene's words: the end of the error for a
+  /// singular elastic stiffness (a missing support). A solid fixes components.
+  virtual std::string support_advice() const {
+    return "fix enough components to stop rigid translation and rotation";
+  }
 };
 
 }  // namespace perinom

@@ -89,6 +89,8 @@ class ThinPlateModel : public LocalModel {
   std::vector<double> stress_measure(const double* w) const override;
   std::vector<PlanLine> plan() const override;
   std::vector<std::string> not_assembled() const override;
+  /// A plate takes no `fix`: its supports are edges, simply supported or clamped.
+  std::string support_advice() const override;
 
  private:
   void extend(const double* w, std::vector<double>& ext) const;

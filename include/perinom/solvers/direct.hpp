@@ -29,7 +29,9 @@ struct DirectOptions {
 /// 3, taken only while the residual is above the tolerance: rounding in a badly conditioned
 /// K_T, e.g. nu near 1/2), and `failure` naming what went wrong (K_T not positive definite:
 /// a non-symmetric formulation or a rigid mode left free; a residual still above the
-/// tolerance). Throws InputError for a model
+/// tolerance). A solution whose sum of squares is not finite fails the NaN/Inf guard of ADR
+/// and Newton: `diverged`, diverged_at 1, iterations 0 and u the unloaded state (zeros).
+/// Throws InputError for a model
 /// with history or collocated constraints.
 SolveReport solve_direct(TangentModel& model, const Loading& loading, std::vector<double>& u,
                          const DirectOptions& options = {}, Progress* progress = nullptr);
