@@ -2,15 +2,37 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
+#include "perinom/core/error.hpp"
 #include "perinom/operators/bond_weights.hpp"
 #include "perinom/operators/row_accumulator.hpp"
 
 namespace perinom {
+namespace {
+
+/// The options a plate is built from, as the scene reader checks its keys: a library caller's
+/// thickness of 0 made D0 = 0 and a singular stiffness named nowhere.
+const ThinPlateOptions& checked(const ThinPlateOptions& o) {
+  auto refuse = [](const char* field, double v, const char* rule) {
+    char text[160];
+    std::snprintf(text, sizeof text, "ThinPlateOptions::%s = %g: %s", field, v, rule);
+    throw InputError(text);
+  };
+  if (!(o.E > 0.0 && std::isfinite(o.E))) refuse("E", o.E, "must be positive and finite");
+  if (!(o.nu > -1.0 && o.nu < 0.5)) refuse("nu", o.nu, "must lie in (-1, 0.5)");
+  if (!(o.thickness > 0.0 && std::isfinite(o.thickness))) refuse("thickness", o.thickness, "must be positive and finite");
+  if (!(o.density > 0.0 && std::isfinite(o.density))) refuse("density", o.density, "must be positive and finite");
+  if (!(o.stabilization >= 0.0 && std::isfinite(o.stabilization)))
+    refuse("stabilization", o.stabilization, "must be zero or positive, and finite");
+  return o;
+}
+
+}  // namespace
 
 ThinPlateModel::ThinPlateModel(PlateCloud plate, const Families& families, const ThinPlateOptions& opt)
-    : plate_(std::move(plate)), opt_(opt),
+    : plate_(std::move(plate)), opt_(checked(opt)),
       D0_(opt.E * std::pow(opt.thickness, 3) / (12.0 * (1.0 - opt.nu * opt.nu))) {
   const PointCloud& c = plate_.cloud;
   const std::size_t n = c.size(), phys = plate_.physical;

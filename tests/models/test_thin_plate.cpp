@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "../support/clouds.hpp"
+#include "perinom/core/error.hpp"
 #include "perinom/models/thin_plate.hpp"
 #include "perinom/neighbors/search.hpp"
 #include "perinom/scene/problem.hpp"
@@ -200,4 +201,29 @@ TEST_CASE("a plate of too few cells is refused with the count it needs", "[thin_
                                       "its 2 ghost layers)"));
   REQUIRE_THROWS_WITH(make_plate_cloud(square(1.0), 1.0, edges, 1), Catch::Contains("needs at least 2"));
   REQUIRE_NOTHROW(make_plate_cloud(square(1.0), 1.0 / 3.0, edges, 2));
+}
+
+TEST_CASE("a plate built with an option out of range is refused naming the option", "[models][plate]") {
+  // A library caller's thickness of 0 made D0 = 0 and a singular stiffness named nowhere.
+  const auto refused = [](const ThinPlateOptions& o, const std::string& named) {
+    PlateCloud cloud = make_plate_cloud(square(1.0), 0.125, {ss, ss, ss, ss}, 2);
+    const Families f = radius_families(cloud.cloud, 2.015 * 0.125);
+    try {
+      ThinPlateModel m(std::move(cloud), f, o);
+      FAIL("accepted " << named);
+    } catch (const InputError& e) {
+      CHECK(std::string(e.what()).find("ThinPlateOptions::" + named) != std::string::npos);
+    }
+  };
+  ThinPlateOptions o = steel(0.5);
+  o.thickness = 0.0;
+  refused(o, "thickness");
+  o = steel(0.5), o.nu = 0.5;
+  refused(o, "nu");
+  o = steel(0.5), o.E = std::nan("");
+  refused(o, "E");
+  o = steel(0.5), o.density = -1.0;
+  refused(o, "density");
+  o = steel(0.5), o.stabilization = -0.1;
+  refused(o, "stabilization");
 }

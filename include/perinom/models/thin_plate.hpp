@@ -46,7 +46,9 @@ struct ThinPlateOptions {
 class ThinPlateModel : public LocalModel {
  public:
   /// Assembles the second-order operator (gradient and Hessian) on plate.cloud and the
-  /// stabilization. Throws InputError naming a particle whose fit is singular.
+  /// stabilization. Throws InputError naming a particle whose fit is singular, or an option
+  /// out of its range (E, thickness, density positive and finite, -1 < nu < 1/2,
+  /// stabilization >= 0).
   ThinPlateModel(PlateCloud plate, const Families& families, const ThinPlateOptions& options);
   ThinPlateModel(const ThinPlateModel&) = delete;
   ThinPlateModel& operator=(const ThinPlateModel&) = delete;
