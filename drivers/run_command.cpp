@@ -248,6 +248,11 @@ int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& 
   }
   if (!failure.empty()) solver["error"] = failure;
   if (!final_state_error.empty()) solver["final_state_error"] = final_state_error;
+  if (!rep.unstable_end.empty()) {
+    solver["unstable_end"] = rep.unstable_end;
+    warn("the converged end state is %s (summary.json solver.unstable_end): a disturbance leaves it, so the "
+         "body would not stay there", rep.unstable_end.c_str());
+  }
   summary["solver"] = solver;
   if (failure.empty()) {
     // The final state's load factor: 1, or Verlet's ramp where the run ended.

@@ -147,9 +147,10 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
   if (changes) rep.history.columns.push_back("broken_bonds");
   std::vector<double> fint(supports.has_supports() || changes ? model.dofs() : 0), stage_reactions;
   ModelHistory* plastic = model.history();
-  // Why a step failed, when the state it started from (stage's loading at factor s) is unstable.
+  // Why a step failed, when the state it left (stage's loading at factor s) is unstable.
   const auto unstable = [&](const LoadStage& stage, double s, const std::vector<double>& state) {
-    return opt.diagnose_unstable_state ? detail::unstable_state(model, stage.loading, s, state) : std::string{};
+    const std::string why = opt.diagnose_unstable_state ? detail::unstable_state(model, stage.loading, s, state) : "";
+    return why.empty() ? why : "; the state left is " + why;
   };
   // An elastic body that breaks: the work done on it and the energy its breaks dissipated
   // (external work less the strain energy now; energy_ledger.hpp).
@@ -409,6 +410,11 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
       }
     }
     rep.converged = true;
+    // A body turning with its loads can balance on an unstable state that nothing in the path
+    // disturbs (a pressed block under dead pressures converged, symmetric, then failed the
+    // turn); a small-strain body's stiffness changes only by yielding, which LBC tracks.
+    if (opt.diagnose_unstable_state && model.turns_with_body() && !stages.empty())
+      rep.unstable_end = detail::unstable_state(model, stages.back().loading, 1.0, u);
   } catch (const DivergenceError& e) {
     rep.converged = false;
     rep.diverged = true;

@@ -30,7 +30,7 @@ std::string unstable_state(Model& model, const Loading& loading, double s, const
     if (in.negative == 0) return {};
     char text[600];
     std::snprintf(text, sizeof text,
-                  "; the state left is an unstable equilibrium: its stiffness gives way (x^T K x < 0) along "
+                  "an unstable equilibrium: its stiffness gives way (x^T K x < 0) along "
                   "%ld independent direction%s (the inertia of its symmetric part over %zu free dofs), as past a "
                   "peak of the load or at buckling, or when dead loads turn with the body against supports that "
                   "cannot hold their moment (model.follower_pressure: true keeps a pressure normal to the turned "

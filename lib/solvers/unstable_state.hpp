@@ -22,7 +22,8 @@ inline constexpr std::size_t kUnstableStateDofs3D = 4000;
 /// unstable equilibrium, which ADR's damped dynamics leaves and where Newton's tangent turns
 /// singular as the load goes on. Returns "" when there is none, or when the model has no
 /// tangent, has more free dofs than the limits above, or the factorization fails (the
-/// diagnosis never becomes an error of its own); else "; <why>", to follow a failure's text.
+/// diagnosis never becomes an error of its own); else "an unstable equilibrium: <why>", for
+/// "the state left is ..." after a failure or "the end state is ..." after a path.
 /// Not collective: the caller runs it on a whole model only (not on an MPI rank's part).
 std::string unstable_state(Model& model, const Loading& loading, double s, const std::vector<double>& u);
 

@@ -120,7 +120,43 @@ TEST_CASE("finite rotation says how its pressures act, and its Newton check foll
     CHECK((out.find("pressures follow the deformed surface") != std::string::npos) == follower);
     CHECK((out.find("tractions and pressures stay nominal") != std::string::npos) == !follower);
     CHECK(slurp(d / "out" / "summary.json").find("\"newton_converged\": true") != std::string::npos);
+    CHECK(slurp(d / "out" / "summary.json").find("unstable_end") == std::string::npos);  // rollers hold it
   }
+  fs::remove_all(d);
+}
+
+TEST_CASE("a path that converges on an unstable state under dead pressures warns and says so in the summary", "[cli][load_path]") {
+  // A block pressed by dead pressures, held at its centre and at one point against turning:
+  // the loads' moment once turned outweighs what two held particles resist, and the balanced,
+  // symmetric state is unstable (exit 0 with nothing said before).
+  const fs::path d = fs::temp_directory_path() / "perinom_load_path_unstable_end";
+  fs::create_directories(d);
+  std::ofstream(d / "pressed.yaml") << R"(name: pressed
+dimension: 2
+geometry: {box: {min: [0.0, 0.0], max: [0.022, 0.022]}}
+discretization: {dx: 0.002, horizon: {ratio: 3.015}}
+material: {type: drucker_prager, E: 30.0e6, nu: 0.25, density: 2000.0, plane: strain, friction_angle: 30.0,
+           cohesion: 1.0e12, m0: 0.5, h: 50.0}
+model: {type: correspondence, formulation: consistent, kinematics: finite_rotation, follower_pressure: false}
+boundary:
+  - {region: {point: [0.011, 0.011]}, fix: [x, y]}
+  - {region: {point: [0.019, 0.011]}, fix: [y]}
+  - {region: left, pressure: 200.0e3}
+  - {region: right, pressure: 200.0e3}
+  - {region: top, pressure: 600.0e3}
+  - {region: bottom, pressure: 600.0e3}
+stages:
+  - {name: press, steps: 2}
+solver: {type: lbc, tolerance: 1.0e-9}
+)";
+  const std::string cmd = "cd '" + d.string() + "' && '" PERINOM_EXE "' run pressed.yaml --out out >out.txt 2>&1";
+  const int status = std::system(cmd.c_str());
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 0);
+  INFO(slurp(d / "out.txt"));
+  CHECK(slurp(d / "out.txt").find("perinom: warning: the converged end state is an unstable equilibrium: its stiffness "
+                                  "gives way (x^T K x < 0) along 1 independent direction") != std::string::npos);
+  CHECK(slurp(d / "out" / "summary.json").find("\"unstable_end\": \"an unstable equilibrium") != std::string::npos);
   fs::remove_all(d);
 }
 

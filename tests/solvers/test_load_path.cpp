@@ -486,7 +486,9 @@ TEST_CASE("finite rotation: LBC balances a pressed block turned 30 degrees by a 
   LoadPathOptions o;
   o.adr.tolerance = 1e-9;
   o.adr.max_iterations = 20000;
-  REQUIRE(solve_load_path(p.as<CorrespondenceModel>(), p.stages, o, u).converged);
+  const SolveReport rep = solve_load_path(p.as<CorrespondenceModel>(), p.stages, o, u);
+  REQUIRE(rep.converged);
+  CHECK(rep.unstable_end.empty());  // follower pressures turn with the surface: stable
   std::vector<double> sigma;
   p.as<CorrespondenceModel>().stress3(u.data(), sigma);
   // The centre particle (60 of the 11 x 11) and the angle the moved point turned by.
@@ -528,5 +530,16 @@ TEST_CASE("finite rotation: dead pressures on a turned block leave an unstable s
     Problem q = turned_block(model);
     o.diagnose_unstable_state = false;
     CHECK(solve_load_path(q.as<CorrespondenceModel>(), q.stages, o, u).failure.find("unstable") == std::string::npos);
+    // Pressed alone, the path converges (the loads are symmetric: nothing disturbs the turn) on
+    // that unstable state, and the report says so.
+    Problem pressed = turned_block(model);
+    pressed.stages.pop_back();
+    o.diagnose_unstable_state = true;
+    std::vector<double> v;
+    const SolveReport end = solve_load_path(pressed.as<CorrespondenceModel>(), pressed.stages, o, v);
+    INFO("pressed alone: " << end.failure);
+    REQUIRE(end.converged);
+    CHECK(end.unstable_end.find("an unstable equilibrium: its stiffness gives way (x^T K x < 0) along 1 independent "
+                                "direction ") == 0);
   }
 }

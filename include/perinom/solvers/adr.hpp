@@ -35,6 +35,10 @@ struct SolveReport {
   double stable_time_step = 0.0;     ///< Verlet only (s)
   double end_time = 0.0;             ///< Verlet only: simulated time reached (s)
   std::string failure;               ///< why the solve stopped early (NaN or Inf), or empty
+  /// A load path that converged on a body turning with its loads (Model::turns_with_body):
+  /// why its end state is an unstable equilibrium ("an unstable equilibrium: its stiffness
+  /// gives way ..."), or empty (stable, not examined, or another solver).
+  std::string unstable_end;
   /// The NaN/Inf guard stopped the solve at iteration or step `diverged_at`; `iterations`
   /// and `end_time` then describe the last state that passed the guard (the one returned).
   bool diverged = false;
