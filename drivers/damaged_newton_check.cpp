@@ -47,6 +47,7 @@ io::Json damaged_newton_check(Problem& p, const std::vector<double>& u) {
     hold(stages[k].loading, held, u, k == 0);
   }
   LoadPathOptions opt = load_path_options(p.scene.solver);
+  opt.diagnose_unstable_state = false;  // (the run's own path was examined: a second factorization adds nothing)
   opt.scheme = LoadPathScheme::newton;
   opt.newton = newton_options(p);
   std::vector<double> un(model.dofs(), 0.0);

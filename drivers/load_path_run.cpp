@@ -169,6 +169,7 @@ io::Json load_path_newton_check(Problem& p, const std::vector<double>& u, const 
   const std::optional<HistoryState> saved = history ? std::optional<HistoryState>(history->save_history()) : std::nullopt;
   if (history) history->reset_history();
   LoadPathOptions opt = load_path_options(p.scene.solver);
+  opt.diagnose_unstable_state = false;  // (the run's own path was examined: a second factorization adds nothing)
   opt.scheme = LoadPathScheme::newton;
   opt.newton = newton_options(p);  // Newton's own tolerances, the scene's linear solver
   ProbeHistory second;

@@ -264,8 +264,9 @@ int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& 
   }
   if (scene.solver.check == "newton" && failure.empty()) {
     timer.start("newton check");
-    // A check Newton refuses (a singular stiffness: a support missing) is the check's failure:
-    // it once ended the run with exit 2 and a summary that had lost the solve's record.
+    // A check Newton refuses (InputError: a singular stiffness, a support missing; a factor
+    // over --max-memory) is the check's failure, not the run's: it once ended the run with
+    // exit 2 and a summary that had lost the solve's record.
     try {
       summary["check"] = !scene.load_path() ? newton_check(p, u)
                          : scene.damage  ? damaged_newton_check(p, u)

@@ -105,10 +105,13 @@ std::vector<SolverEntry> make_solvers() {
       r = solve_verlet(p.physics(), p.loading, verlet_options(p.scene.solver), u, v, h.progress, h.observe,
                        h.verlet_checkpoints, h.verlet_resume, breaking ? &breaking->changes() : nullptr);
     } catch (const StableStepError& e) {
-      // The masses and stiffnesses come from these keys (and dx, which scales both alike).
-      char keys[200];
-      std::snprintf(keys, sizeof keys, "material.density = %.4g kg/m^3 with material.E = %.4g Pa give no time step: ",
-                    p.scene.material.density, p.scene.material.E);
+      // The masses and stiffnesses come from these keys (and dx, which scales both alike; a
+      // plate's also from its thickness: mass rho t, stiffness E t^3).
+      char plate[80] = "", keys[240];
+      if (p.scene.model.type == "thin_plate")
+        std::snprintf(plate, sizeof plate, " and geometry.thickness = %.4g m", p.scene.geometry.thickness);
+      std::snprintf(keys, sizeof keys, "material.density = %.4g kg/m^3 with material.E = %.4g Pa%s give no time step: ",
+                    p.scene.material.density, p.scene.material.E, plate);
       throw InputErrorOnEveryRank(p.scene.source + ": " + keys + e.what());
     }
     if (breaking) breaking->report(r, true);

@@ -147,10 +147,12 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
   if (changes) rep.history.columns.push_back("broken_bonds");
   std::vector<double> fint(supports.has_supports() || changes ? model.dofs() : 0), stage_reactions;
   ModelHistory* plastic = model.history();
-  // Why a step failed, when the state it left (stage's loading at factor s) is unstable.
-  const auto unstable = [&](const LoadStage& stage, double s, const std::vector<double>& state) {
+  // Why a step failed, when `state` (stage's loading at factor s: the state left by ADR, the
+  // last converged one by Newton) is unstable.
+  const auto unstable = [&](const LoadStage& stage, double s, const std::vector<double>& state,
+                            const char* which = "the state left") {
     const std::string why = opt.diagnose_unstable_state ? detail::unstable_state(model, stage.loading, s, state) : "";
-    return why.empty() ? why : "; the state left is " + why;
+    return why.empty() ? why : "; " + std::string(which) + " is " + why;
   };
   // An elastic body that breaks: the work done on it and the energy its breaks dissipated
   // (external work less the strain energy now; energy_ledger.hpp).
@@ -267,11 +269,15 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
           xi0 = plastic_strains(model);
           t0 = wall_seconds();
         };
-        int good = 0;  // the stage's last converged step: u holds its state when a step fails
+        // The stage's last converged step and its state: a failed step leaves u at the last
+        // good state when the stiffness is singular or the residual not finite, but at KINSOL's
+        // last iterate when KINSOL stops otherwise, which is no equilibrium to examine.
+        int good = 0;
+        std::vector<double> good_u = u;
         const auto commit_step = nopt.after_step;
         nopt.after_step = [&](int step, const std::vector<double>& un, long iterations, double residual) {
           commit_step(step, un, iterations, residual);
-          good = step;
+          good = step, good_u = un;
         };
         auto* tangent = dynamic_cast<TangentModel*>(&model);
         if (!tangent) throw std::invalid_argument("solve_load_path: the Newton scheme needs a model with a tangent");
@@ -281,7 +287,7 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
         // (Newton's failures name their load step.)
         const std::string in_stage = stage_name(stage, int(k)) + ": ";
         if (nr.diverged)
-          throw DivergenceError(in_stage + nr.failure + unstable(stage, double(good) / stage.steps, u),
+          throw DivergenceError(in_stage + nr.failure + unstable(stage, double(good) / stage.steps, good_u, "the last converged state"),
                                 done + nr.diverged_at);
         if (!nr.failure.empty()) {
           // A body turning with its loads that has not yielded is not past its limit load (a block
@@ -289,7 +295,7 @@ SolveReport solve_load_path(Model& model, std::vector<LoadStage>& stages,
           const bool yielded = plastic != nullptr && (!model.turns_with_body() || plastically_strained(model));
           throw SolveError(in_stage + nr.failure +
                            (stage.loading.has_force() && yielded ? "; perhaps " + past_capacity(false, true, 0.0) : "") +
-                           unstable(stage, double(good) / stage.steps, u));
+                           unstable(stage, double(good) / stage.steps, good_u, "the last converged state"));
         }
         done += stage.steps;
         continue;
