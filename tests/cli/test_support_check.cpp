@@ -107,3 +107,14 @@ TEST_CASE("a Newton check that meets a singular stiffness is recorded beside the
   CHECK(summary.find("\"center_w\": ") != std::string::npos);
   CHECK(summary.find("\"newton_error\": \"Newton: the stiffness is singular") != std::string::npos);
 }
+
+TEST_CASE("a plate whose stable step is 0 is refused naming its thickness beside density and E", "[cli][plate][verlet]") {
+  // A plate's mass (rho t) and stiffness (E t^3) scale with its thickness too.
+  cli_test::ScratchDir d;
+  const cli_test::Outcome o = cli_test::perinom(d, "run " PERINOM_SOURCE_DIR "/examples/thin_plate_clamped.yaml "
+                                                   "--out out --set solver.type=verlet --set material.density=1e-300");
+  INFO(o.out << o.err);
+  CHECK(o.exit_code == 2);
+  CHECK(o.err.find("material.density = 1e-300 kg/m^3 with material.E = 2.1e+11 Pa and geometry.thickness = 0.01 m "
+                   "give no time step") != std::string::npos);
+}
