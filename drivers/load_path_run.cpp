@@ -66,6 +66,7 @@ std::vector<double> ProbeHistory::step_columns(const LoadStepRecord& r) {
 }
 
 void ProbeHistory::record(const Problem& p, const LoadStepRecord& r, const std::vector<double>& u) {
+  if (p.scene.damage && p.scene.solver.check == "newton") stress.add(p.physics().stress_measure(u.data()));
   const auto probes = point_probes(p);
   if (probes.empty()) return;
   const ProbeReadout readout(p, u);

@@ -11,6 +11,7 @@
 #include "perinom/scene/problem.hpp"
 #include "perinom/scene/registry.hpp"
 #include "perinom/solvers/load_path.hpp"
+#include "difference.hpp"
 
 namespace perinom::cli {
 
@@ -19,6 +20,9 @@ struct ProbeHistory {
   static constexpr int probe_columns = 5;  ///< per point probe
   std::vector<std::vector<double>> rows;  ///< stage, step, load_factor, then per probe: value,
                                           ///< von_mises, mean_stress, equivalent_strain, eq_plastic_strain
+  /// The stress measure's largest norms along the path, kept when the damaged Newton check will
+  /// compare a broken body's end (a bar broken through ends with rounding for stress).
+  PathScale stress;
   void record(const Problem& p, const LoadStepRecord& r, const std::vector<double>& u);
   /// A row's first columns: stage, step, load_factor.
   static std::vector<double> step_columns(const LoadStepRecord& r);

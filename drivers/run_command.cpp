@@ -269,7 +269,7 @@ int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& 
     // exit 2 and a summary that had lost the solve's record.
     try {
       summary["check"] = !scene.load_path() ? newton_check(p, u)
-                         : scene.damage  ? damaged_newton_check(p, u)
+                         : scene.damage  ? damaged_newton_check(p, u, probe_history.stress)
                                          : load_path_newton_check(p, u, probe_history);
     } catch (const InputError& e) {
       Json check = Json::object();

@@ -302,7 +302,9 @@ TEST_CASE("the Newton check holds the detached particles of a shattered bar wher
   // The brittle bar with grips ends parted, 364 particles detached: their rows are empty, but
   // their live bonds enter their neighbours' gradients, so Newton must hold them where ADR
   // left them (held at zero, the answers differed by 12.7%). The pieces carry nothing, so
-  // the stresses are rounding noise and only the displacement is compared.
+  // the stresses are rounding noise: the check compares them over the largest stress along
+  // the path (before, it reported "stress by 1.169e-01", rounding over rounding, for two
+  // answers 1.7e-9 apart on that scale).
   ScratchDir d;
   const BarRun b = run_bar(d, "--set solver.check=newton");
   INFO(b.o.out << b.o.err);
@@ -311,6 +313,9 @@ TEST_CASE("the Newton check holds the detached particles of a shattered bar wher
   CHECK(json_number(summary, "detached_held") > 300.0);
   CHECK(summary.find("\"newton_converged\": true") != std::string::npos);
   CHECK(json_number(summary, "displacement_relative_l2") < 1e-6);  // measured 7.6e-10
+  CHECK(summary.find("\"stress_relative_to\": \"the largest along the path") != std::string::npos);
+  CHECK(json_number(summary, "stress_relative_l2") < 1e-6);  // measured 1.7e-9 (the example's bar)
+  CHECK(b.o.out.find("stress over the largest along the path") != std::string::npos);
 }
 
 TEST_CASE("smoke: the four-point beam with two flaws, coarse, cracks first at the lower flaw's tip and softens",
