@@ -69,6 +69,7 @@ io::Json damaged_newton_check(Problem& p, const std::vector<double>& u, const Pa
               rest ? ", stress over the largest along the path: the broken body ends unstressed, where both are rounding" : "",
               static_cast<long long>(rep.iterations), seconds, rep.failure.empty() ? "" : "; ",
               rep.failure.c_str());
+  warn_if_apart(du, ds, rep);
   return j;
 }
 

@@ -8,6 +8,7 @@
 #include "perinom/io/json_writer.hpp"
 #include "perinom/models/model.hpp"
 #include "perinom/solvers/adr.hpp"
+#include "diagnostics.hpp"
 
 namespace perinom::cli {
 
@@ -63,6 +64,24 @@ inline io::Json check_json(const Difference& du, const Difference& ds, const Sol
   j["newton_seconds"] = seconds;
   if (!newton.failure.empty()) j["newton_error"] = newton.failure;
   return j;
+}
+
+/// Two answers further apart than this (relative L2 of displacement or stress) are not one
+/// answer: solver tolerances move a converged answer by far less (the examples' checks read
+/// 1e-10 to 1e-5).
+inline constexpr double kChecksApart = 1e-2;
+
+/// Warns, after a check's own line, when Newton converged to an answer kChecksApart or more
+/// from the run's: the number alone was printed for a 2-D cantilever 15% off (ADR stopped by a
+/// loose tolerance), with nothing to say it mattered.
+inline void warn_if_apart(const Difference& du, const Difference& ds, const SolveReport& newton) {
+  if (!newton.converged || !(du.relative_l2 >= kChecksApart || ds.relative_l2 >= kChecksApart)) return;
+  warn("solver.check: newton: the run's answer and Newton's differ by %.3g%% in displacement and %.3g%% in "
+       "stress (relative L2), more than %g%%: one of them is not the discrete problem's answer (a loose "
+       "solver.tolerance or displacement_tolerance stops ADR early: the 2-D cantilever of "
+       "verification/formulation/cantilever_2d.yaml is 15%% off at 1e-3), or the problem has more than one (past a "
+       "peak of the load or at a bifurcation, where the path decides which); trust neither until they agree",
+       100.0 * du.relative_l2, 100.0 * ds.relative_l2, 100.0 * kChecksApart);
 }
 
 }  // namespace perinom::cli

@@ -210,6 +210,7 @@ io::Json load_path_newton_check(Problem& p, const std::vector<double>& u, const 
               du.relative_l2, ds.relative_l2,
               rest ? ", over the largest along the path: the path ends at rest, where both are rounding" : "",
               probes_max, static_cast<long long>(rep.iterations), seconds);
+  warn_if_apart(du, ds, rep);
   return j;
 }
 

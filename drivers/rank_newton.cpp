@@ -30,6 +30,7 @@ io::Json rank_newton_check(const RankRun& run, DistributedModel& model, const Lo
   std::printf("perinom: Newton check: displacement differs by %.3e, stress by %.3e (relative L2); Newton: %lld "
               "iterations, %.3f s on %d ranks\n",
               du.relative_l2, ds.relative_l2, static_cast<long long>(rep.iterations), seconds, run.ranks);
+  warn_if_apart(du, ds, rep);
   return check_json(du, ds, rep, seconds);
 }
 

@@ -98,6 +98,7 @@ Json newton_check(Problem& p, const std::vector<double>& u) {
   Json j = check_json(du, ds, rep, seconds);
   std::printf("perinom: Newton check: displacement differs by %.3e, stress by %.3e (relative L2); "
               "Newton: %lld iterations, %.3f s\n", du.relative_l2, ds.relative_l2, static_cast<long long>(rep.iterations), seconds);
+  warn_if_apart(du, ds, rep);
   return j;
 }
 
