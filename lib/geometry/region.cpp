@@ -75,6 +75,23 @@ std::string outside_body(const NearestParticle& n, const PointCloud& cloud) {
   return msg.str();
 }
 
+std::string outside_box(const BoxGeometry& box, const double* point) {
+  double side = 0.0, worst = 0.0;
+  int axis = -1;
+  bool above = false;
+  for (int a = 0; a < box.dim; ++a) side = std::max(side, box.max[a] - box.min[a]);
+  for (int a = 0; a < box.dim; ++a)
+    for (const bool up : {false, true}) {
+      const double past = up ? point[a] - box.max[a] : box.min[a] - point[a];
+      if (past > worst) worst = past, axis = a, above = up;
+    }
+  if (!(worst > 1e-9 * side)) return "";
+  std::ostringstream msg;
+  msg << "lies " << worst << " m outside geometry.box (past its " << (above ? "max " : "min ") << "xyz"[axis]
+      << " = " << (above ? box.max[axis] : box.min[axis]) << " m)";
+  return msg.str();
+}
+
 std::string inside_hole(const BoxGeometry& box, const double* point) {
   for (std::size_t k = 0; k < box.holes.size(); ++k) {
     Hole inner = box.holes[k];

@@ -1,6 +1,7 @@
 #include "perinom/scene/problem.hpp"
 
 #include <algorithm>
+#include <sstream>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -174,10 +175,20 @@ void check_fracture_energy(const DamageSpec& d, const Scene& s, const Families& 
 
 }  // namespace
 
+namespace {
+/// The box a lattice body fills (none for a body from files: it has no box).
+const BoxGeometry* lattice_box(const Scene& s) { return s.body_files.given() ? nullptr : &s.geometry; }
+}  // namespace
+
 BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud, const BoxGeometry* box) {
   const int d = cloud.dim;
   BoundProbe b{p, {}, {}};
   if (!p.is_line) {
+    if (const std::string off = box ? outside_box(*box, p.point.data()) : ""; !off.empty())
+      throw InputError(p.where + ".point: probe '" + p.name + "' " + off +
+                       "; a point probe reads the particle nearest its point, and with reconstruct extrapolates "
+                       "from it past the surface (a bar in uniform tension read 3% high 1.2 spacings beyond its "
+                       "end): put the point on the body's surface or inside it");
     if (const std::string hole = box ? inside_hole(*box, p.point.data()) : ""; !hole.empty())
       throw InputError(p.where + ".point: probe '" + p.name + "' " + hole +
                        "; a point probe reads the particle nearest its point, here one on the hole's edge");
@@ -194,6 +205,8 @@ BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud, const BoxGeom
   if (!(len2 > 0.0)) throw InputError(p.where + ".line: probe '" + p.name + "' has from equal to to");
   const double half = 0.5 * *std::max_element(cloud.spacing.begin(), cloud.spacing.end());
   std::vector<std::pair<double, ParticleId>> hits;
+  double closest = INFINITY;  // squared, for the error when none is within half a spacing
+  std::size_t nearest = 0;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     double t = 0.0;
     for (int a = 0; a < d; ++a) t += (cloud.x[i * d + a] - p.from[a]) * (p.to[a] - p.from[a]);
@@ -202,8 +215,19 @@ BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud, const BoxGeom
     for (int a = 0; a < d; ++a)
       r2 += std::pow(cloud.x[i * d + a] - (p.from[a] + t * (p.to[a] - p.from[a])), 2);
     if (r2 <= half * half * (1.0 + 1e-9)) hits.emplace_back(t * std::sqrt(len2), static_cast<ParticleId>(i));
+    if (r2 < closest) closest = r2, nearest = i;
   }
-  if (hits.empty()) throw InputError(p.where + ".line: probe '" + p.name + "' meets no particle");
+  if (hits.empty()) {
+    // A 3-D line through the centre of a bar an even number of particles across passes the
+    // four nearest rows at sqrt(2) dx / 2: "meets no particle" alone read as a wrong line.
+    std::ostringstream msg;
+    msg << p.where << ".line: probe '" << p.name << "' meets no particle: a line reads the particles within half a "
+        << "spacing (" << half << " m) of it, and the nearest, particle " << nearest << " at (";
+    for (int a = 0; a < d; ++a) msg << (a ? ", " : "") << cloud.x[nearest * d + a];
+    msg << "), is " << std::sqrt(closest) << " m from it; a line between rows of particles (through the middle "
+        << "of a body an even number of particles across) meets none: move it onto a row";
+    throw InputError(msg.str());
+  }
   std::sort(hits.begin(), hits.end());
   for (const auto& h : hits) {
     b.along.push_back(h.first);
@@ -333,7 +357,7 @@ Problem build_problem_frame(const Scene& s) {
   p.scene = s;
   const Body body = scene_body(s, p);
   p.facets = body_facets(s, body, p);
-  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud, &s.geometry));
+  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud, lattice_box(s)));
   BoundaryData data{&body.facets, &p.groups, nullptr};
   FaceOf face_of;
   p.loading = make_loading(s, s.boundary, p.cloud, face_of, data);  // face-located ones uncoupled (rank_loading)
@@ -353,7 +377,7 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   p.bonds = families.bonds();
   if (p.scene.damage && p.scene.damage->G_c > 0.0) derive_critical_stretch(*p.scene.damage, s, families);
   if (p.scene.damage && p.scene.damage->fracture_energy > 0.0) check_fracture_energy(*p.scene.damage, s, families);
-  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud, &s.geometry));
+  for (const auto& probe : s.probes) p.probes.push_back(bind_probe(probe, p.cloud, lattice_box(s)));
   if (timer) timer->start("operators");
   const CorrespondenceOptions opt = correspondence_options(s);
   Surface surface;

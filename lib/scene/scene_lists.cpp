@@ -162,7 +162,9 @@ void read_probes(const std::vector<YAML::Node>& items, const std::string& source
     for (const auto& q : s.probes)
       if (q.name == p.name) f.fail("name", "another probe is already named '" + p.name + "'");
     p.is_line = f.has("line");
-    if (p.is_line == f.has("point")) f.fail("name", "a probe has exactly one of point or line");
+    if (p.is_line == f.has("point"))
+      f.fail(p.is_line ? "line" : "point", std::string("a probe has exactly one of point or line; this one has ") +
+                                               (p.is_line ? "both" : "neither"));
     // The files probes write, apart from one another and from the snapshots' NAME_NNNNNN.csv.
     for (const auto& q : s.probes)
       if (probe_file(q) == probe_file(p))
@@ -202,7 +204,8 @@ void read_probes(const std::vector<YAML::Node>& items, const std::string& source
         f.fail("component", s.dim == 2 ? "must be xx, yy, zz or xy" : "must be xx, yy, zz, xy, yz or xz");
     } else if (p.field == "von_mises" || p.field == "mean_stress" || p.field == "equivalent_strain" ||
                p.field == "eq_plastic_strain") {
-      if (f.has("component")) f.fail("component", "a " + p.field + " probe has no component");
+      if (f.has("component"))
+        f.fail("component", (p.field[0] == 'e' ? "an " : "a ") + p.field + " probe has no component");
       if (p.field == "eq_plastic_strain" && !s.plasticity)
         f.fail("field", "eq_plastic_strain needs a plastic material (material.type: drucker_prager)");
     } else {
