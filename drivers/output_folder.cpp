@@ -136,9 +136,13 @@ RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& sp
     std::sort(claimed.begin(), claimed.end());
     std::string list;
     for (const std::string& n : claimed) list += (list.empty() ? "" : ", ") + n;
-    throw InputError("--out " + dir_ + " holds " + list + ", which no perinom run recorded writing there, and this "
-                     "run would write over " + (claimed.size() > 1 ? "them: move them" : "it: move it") +
-                     ", or give this run another --out");
+    // Named like this scene's outputs, not necessarily one this run writes (a stray
+    // NAME_000007.vtu where the run writes NAME_000000 alone was said to be written over).
+    const bool many = claimed.size() > 1;
+    throw InputError("--out " + dir_ + " holds " + list + ", which no perinom run recorded writing there and which " +
+                     (many ? "are" : "is") + " named like this run's output files (summary, histories, checkpoint, or "
+                     "this scene's snapshots, series and probes): " + (many ? "they" : "it") + " could be written over "
+                     "or taken for this run's: move " + (many ? "them" : "it") + ", or give this run another --out");
   }
   {
     std::ofstream f(path, std::ios::trunc);

@@ -11,10 +11,11 @@
 //     since its marker. Any *.tmp of these goes too. A run resumed in place (restart.hpp)
 //     spares the files of the run it continues. Files named like a run's output that no run
 //     recorded (a reference.vtu of the user's, a folder of an older perinom) are left in
-//     place and listed (foreign()), unless this run would write over them: a foreign
+//     place and listed (foreign()), unless this run could write over them: a foreign
 //     summary.json, history.csv, load_steps.csv or checkpoint.bin, or a name the run says it
-//     writes (its snapshots, its probes), is refused before anything is written (a user's
-//     summary.json was overwritten while the warning said it was left in place).
+//     may write (its scene's snapshots NAME_*, series, probes), is refused before anything is
+//     written (a user's summary.json was overwritten while the warning said it was left in
+//     place).
 //   - summary.json is written last, with its "status".
 //   - On every way out the program controls (the destructor runs on success, on exit codes
 //     1 to 4 alike) the manifest is written (this run's outputs: written since its marker,
@@ -42,7 +43,7 @@ class RunFolder {
 
   /// Prepares `dir` as above, sparing the files named in `spare`. @throws InputError naming
   /// --out DIR if it cannot be written, another perinom run is writing it, or it holds a file
-  /// of the user's this run would write over.
+  /// of the user's named like this run's outputs.
   RunFolder(std::string dir, bool keep, const std::set<std::string>& spare = {}, const OutputNames& writes = {});
   ~RunFolder();
   RunFolder(const RunFolder&) = delete;
