@@ -68,11 +68,25 @@ std::string command_of(const std::string& pid) {
   return name;
 }
 
+/// Whether /proc/PID/stat says the process has ended and waits to be reaped (state Z or X):
+/// a run killed by `timeout -s KILL` stays such a zombie until its parent waits for it, and
+/// kill(pid, 0) still finds it.
+bool ended(const std::string& pid) {
+  std::ifstream f("/proc/" + pid + "/stat");
+  std::string stat;
+  std::getline(f, stat);
+  const std::size_t name_end = stat.rfind(')');  // the command name may hold spaces and ')'
+  if (name_end == std::string::npos || name_end + 2 >= stat.size()) return false;
+  const char state = stat[name_end + 2];
+  return state == 'Z' || state == 'X';
+}
+
 /// Whether process `pid` is alive and a perinom (its command name this one's; one whose name
 /// cannot be read counts as a perinom: refusing is the safe error, and the message says how
 /// to go on).
 bool running_perinom(long pid) {
   if (pid <= 0 || pid == ::getpid() || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno != EPERM)) return false;
+  if (ended(std::to_string(pid))) return false;
   const std::string other = command_of(std::to_string(pid));
   return other.empty() || other == command_of("self");
 }
