@@ -102,17 +102,21 @@ Json newton_check(Problem& p, const std::vector<double>& u) {
   return j;
 }
 
-int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& estimate,
-                  const std::optional<Restart>& restart, const std::string& dir, PhaseTimer& timer) {
-  if (restart) restart->bring_snapshots(dir);
+/// The scene's particles, families and operators, saying what was built.
+Problem build(const Options& opt, const Scene& scene, PhaseTimer& timer) {
   std::printf("perinom: %s: building particles, families and operators\n", scene.name.c_str());
   std::fflush(stdout);
   Problem p = build_problem(scene, &timer);
   p.memory_limit = opt.max_memory;
   std::printf("perinom: %s: %zu particles, %zu bonds, %d threads, solver %s\n", scene.name.c_str(),
               p.cloud.size(), p.bonds, omp_get_max_threads(), scene.solver.type.c_str());
+  return p;
+}
+
+int run_in_folder(const Scene& scene, const MemoryEstimate& estimate,
+                  const std::optional<Restart>& restart, const std::string& dir, PhaseTimer& timer, Problem& p) {
   if (restart) {
-    restart->check(p);
+    restart->bring_snapshots(dir);
     std::printf("perinom: resuming from %s\n", restart->where().c_str());
   }
   if (scene.model.kinematics == "finite_rotation" &&
@@ -335,10 +339,22 @@ int run(const Options& opt) {
       opt.restart.empty() ? std::nullopt : std::optional<Restart>(std::in_place, opt.restart, scene);
   const std::string dir = !opt.out.empty() ? opt.out : restart ? opt.restart : "out/" + scene.name;
   const bool in_place = restart && restart->in_place(dir);
-  const RunFolder folder(dir, opt.keep, in_place ? restart->files() : std::set<std::string>{},
-                         [&scene](const std::string& name) { return scene_writes(scene, name); });
-  folder.announce();
-  return folder.recording_errors(scene, [&] { return run_in_folder(opt, scene, estimate, restart, dir, timer); });
+  const auto in_folder = [&](Problem* built) -> int {
+    const RunFolder folder(dir, opt.keep, in_place ? restart->files() : std::set<std::string>{},
+                           [&scene](const std::string& name) { return scene_writes(scene, name); });
+    folder.announce();
+    return folder.recording_errors(scene, [&] {
+      if (built) return run_in_folder(scene, estimate, restart, dir, timer, *built);
+      Problem p = build(opt, scene, timer);
+      return run_in_folder(scene, estimate, restart, dir, timer, p);
+    });
+  };
+  if (!restart) return in_folder(nullptr);
+  // A restart is checked whole, its particles too, before its folder is touched: refused
+  // once the folder was cleaned in place, it had removed the results of the run it resumes.
+  Problem p = build(opt, scene, timer);
+  restart->check(p);
+  return in_folder(&p);
 }
 
 }  // namespace perinom::cli
