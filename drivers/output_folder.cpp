@@ -195,12 +195,18 @@ bool written_since(const std::string& dir, const std::string& name, fs::file_tim
 
 }  // namespace
 
-void RunFolder::record_error(const Scene& scene, const std::string& error, int exit_code) const {
+bool RunFolder::holds_run(const std::string& dir) {
+  std::error_code e;
+  return fs::is_regular_file(fs::path(dir) / manifest, e) || fs::is_regular_file(fs::path(dir) / marker, e);
+}
+
+void RunFolder::record_error(const std::string& scene_file, const std::string& name, const std::string& error,
+                             int exit_code) const {
   if (written_since(dir_, "summary.json", start_)) return;
   io::Json summary = io::Json::object();
   summary["status"] = std::string("error");
-  summary["scene"] = scene.source;
-  summary["name"] = scene.name;
+  summary["scene"] = scene_file;
+  if (!name.empty()) summary["name"] = name;
   summary["error"] = error;
   summary["exit_code"] = exit_code;
   try {

@@ -60,7 +60,14 @@ class RunFolder {
   /// the scene's file and name, `error` and the exit code (a long run whose first snapshot
   /// could not be written left a history and no summary). Nothing when this run wrote its
   /// summary already, or when it cannot be written (the marker then stays: ~RunFolder).
-  void record_error(const Scene& scene, const std::string& error, int exit_code) const;
+  void record_error(const Scene& scene, const std::string& error, int exit_code) const {
+    record_error(scene.source, scene.name, error, exit_code);
+  }
+  /// The same, naming the scene file as given and its name ("": not read, left out).
+  void record_error(const std::string& scene_file, const std::string& name, const std::string& error,
+                    int exit_code) const;
+  /// Whether `dir` holds what a perinom run leaves there: its manifest or its marker.
+  static bool holds_run(const std::string& dir);
   /// Runs `body`; an error it throws is recorded (record_error, with the exit code perinom
   /// gives it: 2 bad input or an output that cannot be written, 3 a failed solve, 4 other)
   /// and thrown on.

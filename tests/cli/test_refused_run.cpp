@@ -1,5 +1,7 @@
-// A run refused before its output folder is prepared: the folder a --restart resumes in
-// place is left as it was.
+// A run refused before its output folder is prepared (drivers/refused_run.hpp): a folder
+// holding an earlier perinom run is left with a summary that says "error", never the earlier
+// run's summary looking like this run's; any other folder, and the folder a --restart resumes
+// in place, is left as it was.
 #include <map>
 
 #include "../support/cli.hpp"
@@ -44,6 +46,39 @@ std::string cloud(int rows = 16, const std::string& separator = ",") {
 
 }  // namespace
 
+TEST_CASE("a scene refused while reading leaves an error summary where an earlier run left its results", "[cli]") {
+  // A sweep read summary.json after each run: a case refused with exit 2 left the previous
+  // case's "converged" summary and snapshot in the folder, and got its numbers.
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  require_ok(perinom(dir, "run scene.yaml --out out"));
+  REQUIRE(fs::exists(dir.path / "out" / "tiny_000000.vtu"));
+  SECTION("the folder of a finished run: cleared as after any error, the summary says error") {
+    require_one_clear_error(perinom(dir, "run scene.yaml --out out --set material.E=-5e9"), {"material.E"});
+    const std::string summary = slurp(dir.path / "out" / "summary.json");
+    CHECK(summary.find("\"status\": \"error\"") != std::string::npos);
+    CHECK(summary.find("\"exit_code\": 2") != std::string::npos);
+    CHECK(summary.find("material.E: must be positive") != std::string::npos);
+    CHECK(contents(dir.path / "out").size() == 2);  // summary.json and perinom.files
+    CHECK(slurp(dir.path / "out" / "perinom.files").find("summary.json\n") != std::string::npos);
+  }
+  SECTION("the default folder, once the scene is read (a memory refusal)") {
+    require_ok(perinom(dir, "run scene.yaml"));
+    require_one_clear_error(perinom(dir, "run scene.yaml --max-memory 1K"), {"memory"});
+    const std::string summary = slurp(dir.path / "out" / "tiny" / "summary.json");
+    CHECK(summary.find("\"status\": \"error\"") != std::string::npos);
+    CHECK(summary.find("\"name\": \"tiny\"") != std::string::npos);
+  }
+  SECTION("a folder no perinom run wrote is left as it was, and none is created") {
+    fs::create_directories(dir.path / "mine");
+    std::ofstream(dir.path / "mine" / "summary.json") << "mine";
+    require_one_clear_error(perinom(dir, "run scene.yaml --out mine --set material.E=-5e9"), {"material.E"});
+    CHECK(contents(dir.path / "mine") == std::map<std::string, std::string>{{"summary.json", "mine"}});
+    require_one_clear_error(perinom(dir, "run scene.yaml --out fresh --set material.E=-5e9"), {"material.E"});
+    CHECK_FALSE(fs::exists(dir.path / "fresh"));
+  }
+}
+
 TEST_CASE("a restart refused once the particles are built leaves the folder it resumes as it was", "[cli][checkpoint]") {
   // The counts, positions and body files are compared after the build, which came after the
   // folder was cleaned in place: a refused restart left checkpoint.bin and an error summary,
@@ -69,4 +104,11 @@ TEST_CASE("a restart refused once the particles are built leaves the folder it r
     CHECK(other.exit_code == 2);
     CHECK(contents(d.path / "written") == before);
   }
+  // Into another folder that holds an earlier run: its summary says error.
+  std::ofstream(d.path / "cloud.csv", std::ios::trunc) << cloud();
+  require_ok(perinom(d, "run scene.yaml --out other"));
+  std::ofstream(d.path / "cloud.csv", std::ios::trunc) << cloud(15);
+  CHECK(perinom(d, "run scene.yaml --restart written --out other").exit_code == 2);
+  CHECK(slurp(d.path / "other" / "summary.json").find("\"status\": \"error\"") != std::string::npos);
+  CHECK(contents(d.path / "written") == before);
 }
