@@ -3,8 +3,8 @@
 // finished run, a run still going or killed, or nothing of perinom's; and a run removes
 // only files a perinom run wrote there, never a user's own.
 //   - At start the folder is created and checked writable, refused while another perinom
-//     writes it (its marker names a live perinom process, not a zombie), and the marker run.incomplete is
-//     written. The files an earlier run wrote are removed, unless --keep: those its
+//     writes it (its marker names a live perinom process, not a zombie), and the marker
+//     run.incomplete is written. The files an earlier run wrote are removed, unless --keep: those its
 //     manifest perinom.files lists, and, after a killed run (its marker left, no manifest),
 //     those named as a run's output (summary.json, history.csv, load_steps.csv, *.vtu,
 //     *.pvtu, *.pvd, probe_*.csv, snapshot CSVs NAME_NNNNNN.csv, checkpoint.bin) written
