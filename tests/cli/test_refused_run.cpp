@@ -53,7 +53,7 @@ TEST_CASE("a scene refused while reading leaves an error summary where an earlie
   std::ofstream(dir.path / "scene.yaml") << tiny_scene;
   require_ok(perinom(dir, "run scene.yaml --out out"));
   REQUIRE(fs::exists(dir.path / "out" / "tiny_000000.vtu"));
-  SECTION("the folder of a finished run: cleared as after any error, the summary says error") {
+  SECTION("the folder of a finished run is cleared as after any error and its summary says error") {
     require_one_clear_error(perinom(dir, "run scene.yaml --out out --set material.E=-5e9"), {"material.E"});
     const std::string summary = slurp(dir.path / "out" / "summary.json");
     CHECK(summary.find("\"status\": \"error\"") != std::string::npos);
@@ -62,14 +62,14 @@ TEST_CASE("a scene refused while reading leaves an error summary where an earlie
     CHECK(contents(dir.path / "out").size() == 2);  // summary.json and perinom.files
     CHECK(slurp(dir.path / "out" / "perinom.files").find("summary.json\n") != std::string::npos);
   }
-  SECTION("the default folder, once the scene is read (a memory refusal)") {
+  SECTION("the default folder once the scene is read as for a memory refusal") {
     require_ok(perinom(dir, "run scene.yaml"));
     require_one_clear_error(perinom(dir, "run scene.yaml --max-memory 1K"), {"memory"});
     const std::string summary = slurp(dir.path / "out" / "tiny" / "summary.json");
     CHECK(summary.find("\"status\": \"error\"") != std::string::npos);
     CHECK(summary.find("\"name\": \"tiny\"") != std::string::npos);
   }
-  SECTION("a folder no perinom run wrote is left as it was, and none is created") {
+  SECTION("a folder no perinom run wrote is left as it was and none is created") {
     fs::create_directories(dir.path / "mine");
     std::ofstream(dir.path / "mine" / "summary.json") << "mine";
     require_one_clear_error(perinom(dir, "run scene.yaml --out mine --set material.E=-5e9"), {"material.E"});
