@@ -68,11 +68,25 @@ std::string command_of(const std::string& pid) {
   return name;
 }
 
+/// Whether /proc/PID/stat says the process has ended and waits to be reaped (state Z or X):
+/// a run killed by `timeout -s KILL` stays such a zombie until its parent waits for it, and
+/// kill(pid, 0) still finds it.
+bool ended(const std::string& pid) {
+  std::ifstream f("/proc/" + pid + "/stat");
+  std::string stat;
+  std::getline(f, stat);
+  const std::size_t name_end = stat.rfind(')');  // the command name may hold spaces and ')'
+  if (name_end == std::string::npos || name_end + 2 >= stat.size()) return false;
+  const char state = stat[name_end + 2];
+  return state == 'Z' || state == 'X';
+}
+
 /// Whether process `pid` is alive and a perinom (its command name this one's; one whose name
 /// cannot be read counts as a perinom: refusing is the safe error, and the message says how
 /// to go on).
 bool running_perinom(long pid) {
   if (pid <= 0 || pid == ::getpid() || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno != EPERM)) return false;
+  if (ended(std::to_string(pid))) return false;
   const std::string other = command_of(std::to_string(pid));
   return other.empty() || other == command_of("self");
 }
@@ -136,9 +150,13 @@ RunFolder::RunFolder(std::string dir, bool keep, const std::set<std::string>& sp
     std::sort(claimed.begin(), claimed.end());
     std::string list;
     for (const std::string& n : claimed) list += (list.empty() ? "" : ", ") + n;
-    throw InputError("--out " + dir_ + " holds " + list + ", which no perinom run recorded writing there, and this "
-                     "run would write over " + (claimed.size() > 1 ? "them: move them" : "it: move it") +
-                     ", or give this run another --out");
+    // Named like this scene's outputs, not necessarily one this run writes (a stray
+    // NAME_000007.vtu where the run writes NAME_000000 alone was said to be written over).
+    const bool many = claimed.size() > 1;
+    throw InputError("--out " + dir_ + " holds " + list + ", which no perinom run recorded writing there and which " +
+                     (many ? "are" : "is") + " named like this run's output files (summary, histories, checkpoint, or "
+                     "this scene's snapshots, series and probes): " + (many ? "they" : "it") + " could be written over "
+                     "or taken for this run's: move " + (many ? "them" : "it") + ", or give this run another --out");
   }
   {
     std::ofstream f(path, std::ios::trunc);
@@ -177,12 +195,18 @@ bool written_since(const std::string& dir, const std::string& name, fs::file_tim
 
 }  // namespace
 
-void RunFolder::record_error(const Scene& scene, const std::string& error, int exit_code) const {
+bool RunFolder::holds_run(const std::string& dir) {
+  std::error_code e;
+  return fs::is_regular_file(fs::path(dir) / manifest, e) || fs::is_regular_file(fs::path(dir) / marker, e);
+}
+
+void RunFolder::record_error(const std::string& scene_file, const std::string& name, const std::string& error,
+                             int exit_code) const {
   if (written_since(dir_, "summary.json", start_)) return;
   io::Json summary = io::Json::object();
   summary["status"] = std::string("error");
-  summary["scene"] = scene.source;
-  summary["name"] = scene.name;
+  summary["scene"] = scene_file;
+  if (!name.empty()) summary["name"] = name;
   summary["error"] = error;
   summary["exit_code"] = exit_code;
   try {

@@ -3,18 +3,19 @@
 // finished run, a run still going or killed, or nothing of perinom's; and a run removes
 // only files a perinom run wrote there, never a user's own.
 //   - At start the folder is created and checked writable, refused while another perinom
-//     writes it (its marker names a live perinom process), and the marker run.incomplete is
-//     written. The files an earlier run wrote are removed, unless --keep: those its
+//     writes it (its marker names a live perinom process, not a zombie), and the marker
+//     run.incomplete is written. The files an earlier run wrote are removed, unless --keep: those its
 //     manifest perinom.files lists, and, after a killed run (its marker left, no manifest),
 //     those named as a run's output (summary.json, history.csv, load_steps.csv, *.vtu,
 //     *.pvtu, *.pvd, probe_*.csv, snapshot CSVs NAME_NNNNNN.csv, checkpoint.bin) written
 //     since its marker. Any *.tmp of these goes too. A run resumed in place (restart.hpp)
 //     spares the files of the run it continues. Files named like a run's output that no run
 //     recorded (a reference.vtu of the user's, a folder of an older perinom) are left in
-//     place and listed (foreign()), unless this run would write over them: a foreign
+//     place and listed (foreign()), unless this run could write over them: a foreign
 //     summary.json, history.csv, load_steps.csv or checkpoint.bin, or a name the run says it
-//     writes (its snapshots, its probes), is refused before anything is written (a user's
-//     summary.json was overwritten while the warning said it was left in place).
+//     may write (its scene's snapshots NAME_*, series, probes), is refused before anything is
+//     written (a user's summary.json was overwritten while the warning said it was left in
+//     place).
 //   - summary.json is written last, with its "status".
 //   - On every way out the program controls (the destructor runs on success, on exit codes
 //     1 to 4 alike) the manifest is written (this run's outputs: written since its marker,
@@ -42,7 +43,7 @@ class RunFolder {
 
   /// Prepares `dir` as above, sparing the files named in `spare`. @throws InputError naming
   /// --out DIR if it cannot be written, another perinom run is writing it, or it holds a file
-  /// of the user's this run would write over.
+  /// of the user's named like this run's outputs.
   RunFolder(std::string dir, bool keep, const std::set<std::string>& spare = {}, const OutputNames& writes = {});
   ~RunFolder();
   RunFolder(const RunFolder&) = delete;
@@ -59,7 +60,14 @@ class RunFolder {
   /// the scene's file and name, `error` and the exit code (a long run whose first snapshot
   /// could not be written left a history and no summary). Nothing when this run wrote its
   /// summary already, or when it cannot be written (the marker then stays: ~RunFolder).
-  void record_error(const Scene& scene, const std::string& error, int exit_code) const;
+  void record_error(const Scene& scene, const std::string& error, int exit_code) const {
+    record_error(scene.source, scene.name, error, exit_code);
+  }
+  /// The same, naming the scene file as given and its name ("": not read, left out).
+  void record_error(const std::string& scene_file, const std::string& name, const std::string& error,
+                    int exit_code) const;
+  /// Whether `dir` holds what a perinom run leaves there: its manifest or its marker.
+  static bool holds_run(const std::string& dir);
   /// Runs `body`; an error it throws is recorded (record_error, with the exit code perinom
   /// gives it: 2 bad input or an output that cannot be written, 3 a failed solve, 4 other)
   /// and thrown on.

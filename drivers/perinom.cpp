@@ -93,11 +93,15 @@ int main(int argc, char** argv) {
                        " would do the whole work on every rank (run it without mpirun; solver.linear_solver mumps "
                        "or gamg uses PETSc on one rank)");
     std::vector<std::string> given;  // the options, for the command's own (below)
+    std::set<std::string> valued;    // the options given a value so far
     for (std::size_t k = 1; k < args.size(); ++k) {
       const std::string& a = args[k];
       if (a.rfind("--", 0) == 0) given.push_back(a);
       auto value = [&]() -> std::string {
         if (k + 1 >= args.size()) throw InputError("option " + a + " needs a value");
+        // A second value was silently the one used (`--restart a --restart b` resumed b).
+        if (a != "--set" && !valued.insert(a).second)
+          throw InputError("option " + a + " is given twice: it takes one value (only --set may be repeated)");
         return args[++k];
       };
       // Whole numbers and reals are read strictly: all of the text, within the bounds.

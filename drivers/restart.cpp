@@ -125,9 +125,12 @@ void Restart::check(const Problem& p) const {
                      "(has a mesh or point file changed?)");
   // (Checkpoints written before 2026-12-07 do not have it.)
   if (file_.has("body_files") && static_cast<std::uint64_t>(file_.integer("body_files")) != body_files_fingerprint(p.scene))
-    throw InputError("--restart " + dir_ + ": the body's files (" + files_named(p.scene) +
-                     ") are not those the checkpoint was written from: volumes, facets or groups changed under the same "
-                     "scene text");
+    // What is compared is the files' bytes: a file only reformatted (", " for ",") differs
+    // too, and was said to have changed its volumes, facets or groups.
+    throw InputError("--restart " + dir_ + ": the text of the body's files (" + files_named(p.scene) +
+                     ") is not, byte for byte, that of the files the checkpoint was written from (the particles are "
+                     "where it placed them; a volume, facet or group changed, or only the text was rewritten): restore "
+                     "the files, or run from the start");
 }
 
 }  // namespace perinom::cli

@@ -27,6 +27,7 @@
 #include "locking_warning.hpp"
 #include "memory_estimate.hpp"
 #include "output_folder.hpp"
+#include "refused_run.hpp"
 #include "reactions_output.hpp"
 #include "small_strain_check.hpp"
 #include "run_output.hpp"
@@ -102,17 +103,21 @@ Json newton_check(Problem& p, const std::vector<double>& u) {
   return j;
 }
 
-int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& estimate,
-                  const std::optional<Restart>& restart, const std::string& dir, PhaseTimer& timer) {
-  if (restart) restart->bring_snapshots(dir);
+/// The scene's particles, families and operators, saying what was built.
+Problem build(const Options& opt, const Scene& scene, PhaseTimer& timer) {
   std::printf("perinom: %s: building particles, families and operators\n", scene.name.c_str());
   std::fflush(stdout);
   Problem p = build_problem(scene, &timer);
   p.memory_limit = opt.max_memory;
   std::printf("perinom: %s: %zu particles, %zu bonds, %d threads, solver %s\n", scene.name.c_str(),
               p.cloud.size(), p.bonds, omp_get_max_threads(), scene.solver.type.c_str());
+  return p;
+}
+
+int run_in_folder(const Scene& scene, const MemoryEstimate& estimate,
+                  const std::optional<Restart>& restart, const std::string& dir, PhaseTimer& timer, Problem& p) {
   if (restart) {
-    restart->check(p);
+    restart->bring_snapshots(dir);
     std::printf("perinom: resuming from %s\n", restart->where().c_str());
   }
   if (scene.model.kinematics == "finite_rotation" &&
@@ -325,20 +330,44 @@ int run_in_folder(const Options& opt, const Scene& scene, const MemoryEstimate& 
 int run(const Options& opt) {
   if (opt.positional.size() != 1) throw InputError("run needs exactly one scene file");
   PhaseTimer timer;
-  timer.start("read scene");
-  const Scene scene = read_scene(opt.positional[0], opt.overrides);
-  const MemoryEstimate estimate = estimate_memory(scene);
-  require_memory(scene, estimate, opt.max_memory > 0.0 ? opt.max_memory : available_memory(), opt.max_memory > 0.0);
-  // --restart DIR: the checkpoint is checked against the scene before anything is built,
-  // and the run continues in DIR unless --out names another folder.
-  const std::optional<Restart> restart =
-      opt.restart.empty() ? std::nullopt : std::optional<Restart>(std::in_place, opt.restart, scene);
-  const std::string dir = !opt.out.empty() ? opt.out : restart ? opt.restart : "out/" + scene.name;
-  const bool in_place = restart && restart->in_place(dir);
-  const RunFolder folder(dir, opt.keep, in_place ? restart->files() : std::set<std::string>{},
-                         [&scene](const std::string& name) { return scene_writes(scene, name); });
-  folder.announce();
-  return folder.recording_errors(scene, [&] { return run_in_folder(opt, scene, estimate, restart, dir, timer); });
+  // Until the folder is prepared, a refusal leaves it alone unless it holds an earlier run
+  // (refused_run.hpp); the folder a --restart resumes in place is always left alone.
+  RefusedRun refused(opt.positional[0], opt.keep);
+  const auto resumed_in = [&opt](const std::string& dir) {
+    std::error_code e;
+    return !opt.restart.empty() && fs::equivalent(opt.restart, dir, e);
+  };
+  if (!opt.out.empty() && !resumed_in(opt.out)) refused.folder(opt.out, "");
+  return refused.recording([&]() -> int {
+    timer.start("read scene");
+    const Scene scene = read_scene(opt.positional[0], opt.overrides);
+    // --restart DIR continues in DIR unless --out names another folder.
+    const std::string dir = !opt.out.empty() ? opt.out : !opt.restart.empty() ? opt.restart : "out/" + scene.name;
+    if (!resumed_in(dir)) refused.folder(dir, scene.name);
+    const MemoryEstimate estimate = estimate_memory(scene);
+    require_memory(scene, estimate, opt.max_memory > 0.0 ? opt.max_memory : available_memory(), opt.max_memory > 0.0);
+    // The checkpoint is checked against the scene before anything is built.
+    const std::optional<Restart> restart =
+        opt.restart.empty() ? std::nullopt : std::optional<Restart>(std::in_place, opt.restart, scene);
+    const bool in_place = restart && restart->in_place(dir);
+    const auto in_folder = [&](Problem* built) -> int {
+      refused.leave_folder();
+      const RunFolder folder(dir, opt.keep, in_place ? restart->files() : std::set<std::string>{},
+                             [&scene](const std::string& name) { return scene_writes(scene, name); });
+      folder.announce();
+      return folder.recording_errors(scene, [&] {
+        if (built) return run_in_folder(scene, estimate, restart, dir, timer, *built);
+        Problem p = build(opt, scene, timer);
+        return run_in_folder(scene, estimate, restart, dir, timer, p);
+      });
+    };
+    if (!restart) return in_folder(nullptr);
+    // A restart is checked whole, its particles too, before its folder is touched: refused
+    // once the folder was cleaned in place, it had removed the results of the run it resumes.
+    Problem p = build(opt, scene, timer);
+    restart->check(p);
+    return in_folder(&p);
+  });
 }
 
 }  // namespace perinom::cli

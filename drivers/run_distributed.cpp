@@ -30,6 +30,7 @@
 #include "locking_warning.hpp"
 #include "memory_estimate.hpp"
 #include "output_folder.hpp"
+#include "refused_run.hpp"
 #include "perinom/core/error.hpp"
 #include "perinom/operators/singular_family.hpp"
 #include "perinom/core/timer.hpp"
@@ -123,10 +124,15 @@ int run_distributed(const Options& opt) {
   if (!root && !std::freopen("/dev/null", "w", stdout)) throw InputError("cannot silence rank " + std::to_string(world.rank));
   PhaseTimer timer;
   timer.start("read scene");
-  Scene scene = alike_on_ranks(world, [&] {
-    Scene s = read_scene(opt.positional[0], opt.overrides);
-    require_distributed(s, opt);
-    return s;
+  // Refused while reading, an earlier run's folder gets rank 0's error summary (refused_run.hpp).
+  RefusedRun refused(opt.positional[0], opt.keep);
+  if (root) refused.folder(opt.out, "");
+  Scene scene = refused.recording([&] {
+    return alike_on_ranks(world, [&] {
+      Scene s = read_scene(opt.positional[0], opt.overrides);
+      require_distributed(s, opt);
+      return s;
+    });
   });
   const std::string serial = scene.solver.linear_solver;
   if ((scene.solver.type == "newton" || scene.solver.check == "newton") && (serial == "klu" || serial == "umfpack")) {

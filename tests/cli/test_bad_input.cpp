@@ -293,6 +293,20 @@ TEST_CASE("bad command line options are named", "[cli]") {
   require_one_clear_error(perinom(dir, "run"), {"run needs exactly one scene file"});
 }
 
+TEST_CASE("an option of one value given twice is refused naming it and only --set repeats", "[cli]") {
+  // The last one was used without a word: `--restart a --restart b` resumed b.
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  require_one_clear_error(perinom(dir, "run scene.yaml --out a --out b"), {"option --out is given twice"});
+  require_one_clear_error(perinom(dir, "run scene.yaml --restart a --restart b"), {"option --restart is given twice"});
+  require_one_clear_error(perinom(dir, "check scene.yaml --threads 1 --threads 2"), {"option --threads is given twice"});
+  CHECK_FALSE(fs::exists(dir.path / "a"));
+  CHECK_FALSE(fs::exists(dir.path / "b"));
+  const Outcome o = perinom(dir, "check scene.yaml --set material.E=2e9 --set material.nu=0.3");
+  INFO("stderr: " << o.err);
+  CHECK(o.exit_code == 0);
+}
+
 TEST_CASE("a valid run writes its outputs and leaves no temporary file", "[cli]") {
   ScratchDir dir;
   std::ofstream(dir.path / "scene.yaml") << tiny_scene;

@@ -2,6 +2,9 @@
 // --keep), and only those (a user's reference.vtu stays, named in a warning); the marker run.incomplete exists exactly while a run is going (a killed run
 // leaves it, and its history so far), summary.json carries the status, and no .tmp file
 // survives a run that ends by itself, however it ends.
+#include <fcntl.h>
+#include <unistd.h>
+
 #include "../support/background_run.hpp"
 #include "../support/cli.hpp"
 
@@ -142,13 +145,16 @@ TEST_CASE("a run refuses to write over a user's file it would replace, before it
   std::ofstream(dir.path / "scene.yaml") << tiny_scene;
   const fs::path out = dir.path / "out";
   fs::create_directories(out);
-  for (const std::string name : {"summary.json", "tiny_000000.vtu"}) {
+  // A stray NAME_000007.vtu, which this run (one snapshot, NAME_000000) does not write, was
+  // said to be written over: it is refused as named like the run's files.
+  for (const std::string name : {"summary.json", "tiny_000000.vtu", "tiny_000007.vtu"}) {
     INFO(name);
     std::ofstream(out / name) << "mine";
     const Outcome o = perinom(dir, "run scene.yaml --out out");
     CHECK(o.exit_code == 2);
-    CHECK(o.err.find("--out out holds " + name + ", which no perinom run recorded writing there, and this run "
-                     "would write over it") != std::string::npos);
+    CHECK(o.err.find("--out out holds " + name + ", which no perinom run recorded writing there and which is named "
+                     "like this run's output files") != std::string::npos);
+    CHECK(o.err.find("would write over") == std::string::npos);
     CHECK(slurp(out / name) == "mine");
     CHECK(files_in(out) == std::vector<std::string>{name});  // no marker, no output
     fs::remove(out / name);
@@ -199,6 +205,36 @@ TEST_CASE("a run into a folder another perinom run is writing is refused with ex
   const Outcome third = perinom(dir, "run scene.yaml --out out");
   INFO(third.out << third.err);
   CHECK(third.exit_code == 0);
+  require_finished_folder(dir.path / "out");
+}
+
+TEST_CASE("a killed run its parent has not reaped yet is not taken for a run going on", "[cli]") {
+  // `--restart` right after `timeout -s KILL` was refused: "another perinom run (process N)
+  // is writing this folder", N a zombie. A perinom that ended (the program without arguments
+  // exits at once) and is not waited for stands for it, its pid in the marker.
+  ScratchDir dir;
+  std::ofstream(dir.path / "scene.yaml") << tiny_scene;
+  const pid_t pid = ::fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1), ::dup2(null, 2);
+    ::execl(PERINOM_EXE, "perinom", static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  const auto zombie = [&] {
+    const std::string stat = slurp("/proc/" + std::to_string(pid) + "/stat");
+    const auto at = stat.rfind(')');
+    return at != std::string::npos && at + 2 < stat.size() && stat[at + 2] == 'Z';
+  };
+  for (int k = 0; k < 200 && !zombie(); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  REQUIRE(zombie());
+  fs::create_directories(dir.path / "out");
+  std::ofstream(dir.path / "out" / "run.incomplete") << "perinom run in progress (process " << pid << "); ...\n";
+  const Outcome o = perinom(dir, "run scene.yaml --out out");
+  ::waitpid(pid, nullptr, 0);
+  INFO(o.out << o.err);
+  CHECK(o.exit_code == 0);
   require_finished_folder(dir.path / "out");
 }
 

@@ -1,0 +1,54 @@
+#pragma once
+// A `perinom run` refused before its output folder is prepared (reading the scene, its memory,
+// a --restart's checkpoint and, for a restart, the particles built): the folder is left as it
+// is, unless it holds an earlier perinom run (RunFolder::holds_run). Then that run's
+// summary.json would pass for this run's (a sweep reading summary.json after each run
+// recorded the previous case's "converged" numbers for a --set refused with exit 2): the
+// folder is prepared as for a run (the earlier run's files removed, unless --keep) and its
+// summary.json says "status": "error", as after an error found once the folder was prepared.
+// A --restart refused in the folder it resumes changes nothing there: the run it would
+// continue stays whole.
+#include <exception>
+#include <string>
+#include <utility>
+
+#include "perinom/core/error.hpp"
+
+namespace perinom::cli {
+
+class RefusedRun {
+ public:
+  RefusedRun(std::string scene_file, bool keep) : scene_file_(std::move(scene_file)), keep_(keep) {}
+
+  /// The output folder once known, and the scene's name ("" before it is read).
+  void folder(std::string dir, std::string name) { dir_ = std::move(dir), name_ = std::move(name); }
+  /// From here on nothing is recorded: the folder is the run's (RunFolder records its errors),
+  /// or the --restart folder resumed in place.
+  void leave_folder() { dir_.clear(); }
+
+  /// Runs `body`; an error it throws before leave_folder() is recorded as above, with the
+  /// exit code perinom gives it, and thrown on.
+  template <class Body>
+  auto recording(Body body) {
+    try {
+      return body();
+    } catch (const InputError& e) {
+      record(e.what(), 2);
+      throw;
+    } catch (const SolveError& e) {
+      record(e.what(), 3);
+      throw;
+    } catch (const std::exception& e) {
+      record(e.what(), 4);
+      throw;
+    }
+  }
+
+ private:
+  void record(const std::string& error, int exit_code) const;
+
+  std::string scene_file_, dir_, name_;
+  bool keep_;
+};
+
+}  // namespace perinom::cli
