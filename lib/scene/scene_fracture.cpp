@@ -40,8 +40,10 @@ Precrack read_precrack(Fields& f, int dim) {
     const std::array<double, 3>& a = c.edge1;
     const std::array<double, 3>& b = c.edge2;
     const std::array<double, 3> n{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    if (!(norm(n) > 1e-12 * norm(a) * norm(b)) || !(norm(a) > 0.0))
-      f.fail("edge2", "the two edges must span a rectangle (nonzero and not parallel)");
+    if (!(norm(a) > 0.0)) f.fail("edge1", "must be nonzero (the two edges span the crack's rectangle)");
+    if (!(norm(b) > 0.0)) f.fail("edge2", "must be nonzero (the two edges span the crack's rectangle)");
+    if (!(norm(n) > 1e-12 * norm(a) * norm(b)))
+      f.fail("edge2", "is parallel to edge1: the two edges must span a rectangle");
   }
   f.finish();
   return c;

@@ -221,3 +221,15 @@ TEST_CASE("damage.fracture_energy is checked by key, and refused where softening
     require_rejected(s, {"damage.fracture_energy: softening bonds in a Verlet run"});
   }
 }
+
+TEST_CASE("a 3-D precrack names the edge that is zero or parallel", "[cli][fracture]") {
+  // A zero edge1 was reported as edge2 ("the two edges must span a rectangle").
+  const std::string beam = slurp(PERINOM_SOURCE_DIR "/verification/fracture/four_point_beam_3d.yaml");
+  const std::string edges = "edge1: [0.022, 0.022, 0.0], edge2: [0.0, 0.0, 0.0345]";
+  require_rejected(with(beam, edges, "edge1: [0.0, 0.0, 0.0], edge2: [0.0, 0.0, 0.0345]"),
+                   {"precracks[0].edge1: must be nonzero"});
+  require_rejected(with(beam, edges, "edge1: [0.022, 0.022, 0.0], edge2: [0.0, 0.0, 0.0]"),
+                   {"precracks[0].edge2: must be nonzero"});
+  require_rejected(with(beam, edges, "edge1: [0.022, 0.022, 0.0], edge2: [0.011, 0.011, 0.0]"),
+                   {"precracks[0].edge2: is parallel to edge1"});
+}
