@@ -48,6 +48,7 @@
 #include "rank_load_path.hpp"
 #include "rank_newton.hpp"
 #include "rank_memory.hpp"
+#include "rank_rigid_body.hpp"
 #include "reactions_output.hpp"
 #include "small_strain_check.hpp"
 #include "support_check.hpp"
@@ -231,6 +232,7 @@ int run_in_folder(const Options& opt, Scene& scene, const Ranks& world, const st
   std::vector<LoadStage> stages;  // a load path's, each stage's items coupled as `loading`'s
   for (std::size_t k = 0; k < frame.stages.size(); ++k)
     stages.push_back({frame.stages[k].name, frame.stages[k].steps, loading_of(stage_boundary(scene, k), frame.stages[k].loading)});
+  if (!thin_plate) require_rigid_body_over_ranks(frame, part, families, local.cloud, loading, stages);
   const io::Json pins = pin_results(frame);  // printed by rank 0 only (the others' stdout is silenced)
   std::size_t owned_bonds = 0;
   for (std::size_t p = 0; p < part.owned; ++p) owned_bonds += std::size_t(families.end(p) - families.begin(p));
