@@ -347,10 +347,11 @@ int run_in_folder(const Options& opt, Scene& scene, const Ranks& world, const st
   barrier();
 
   if (!final_state_error.empty() && rep.failure.empty()) throw SolveError(final_state_error);
-  // As a serial run: a load step that did not balance leaves the path not converged (exit 1).
+  // As a serial run: a load step that did not balance leaves the path not converged (exit 1);
+  // Newton's failed solve is a solve failure (exit 3: it was said NOT converged, exit 1).
   // The solvers decide on values summed over the ranks: rep.failure is every rank's alike,
   // said once.
-  if (!rep.failure.empty() && scene.load_path() && !rep.diverged) {
+  if (!rep.failure.empty() && scene.load_path() && !rep.diverged && scene.solver.type != "newton") {
     if (root)
       std::fprintf(stderr, "perinom: NOT converged: %s; the last balanced state and results in %s\n", rep.failure.c_str(),
                  dir.c_str());
