@@ -241,7 +241,13 @@ void configure(SNES snes, Mat J, const Reduced& sys, const NewtonOptions& opt) {
   check(SNESGetLineSearch(snes, &ls), "SNESGetLineSearch");
   check(SNESLineSearchSetType(ls, opt.line_search ? SNESLINESEARCHBT : SNESLINESEARCHBASIC), "SNESLineSearchSetType");
   check(SNESSetTolerances(snes, 0.0, opt.tolerance, opt.step_tolerance, opt.max_iterations, -1), "SNESSetTolerances");
-  check(SNESSetFromOptions(snes), "SNESSetFromOptions");
+  // Every rank reads the same options (one --petsc-options): a bad one fails on every rank
+  // alike, and is said once (it was printed by each rank).
+  try {
+    check(SNESSetFromOptions(snes), "SNESSetFromOptions");
+  } catch (const SolveError& e) {
+    throw SolveErrorOnEveryRank(e.what());
+  }
 }
 
 /// The MUMPS factor of the last linear solve, or nullptr (another solver, or none yet).
