@@ -11,8 +11,8 @@
 // searched on the whole cloud), small strain or finite rotation (no follower pressure), elastic or
 // Drucker-Prager, constraints on their particles or at the face (Galerkin, their multipliers
 // solved over the ranks: Loading::ranks), `constraints: rigid_body` (pinned on the whole
-// cloud), tractions and pressures, adr, verlet, newton (constraints on their particles
-// only), or a load path by adr or lbc. Every rank
+// cloud), tractions and pressures, adr, verlet, newton (mumps, or gamg with constraints on
+// their particles only), or a load path by adr, lbc or newton. Every rank
 // builds the whole cloud and loading (O(N) memory per rank) to choose its part. Thin plates
 // (radius families): each rank's plate is its part's nodes and their mirror ghosts
 // (plate_part.hpp), fitted at its owned and near nodes.
@@ -64,8 +64,8 @@ void require_distributed(const Scene& s, const Options& opt) {
     throw InputError(s.source + ": " + key + ": " + what +
                      " is not distributed yet (mpirun -np R perinom run distributes correspondence scenes of the "
                      "classical or consistent formulation on a box or a body from files, elastic or drucker_prager at "
-                     "small strain or finite rotation, solved by adr, verlet or newton (mumps or gamg), or in load steps and stages by adr "
-                     "or lbc, with constraints on their particles or at the face or rigid_body, tractions and pressures; and "
+                     "small strain or finite rotation, solved by adr, verlet or newton (mumps or gamg), or in load steps and stages by adr, "
+                     "lbc or newton, with constraints on their particles or at the face or rigid_body, tractions and pressures; and "
                      "thin plates with radius families); run it without mpirun");
   };
   if (!opt.restart.empty()) refuse("--restart", "a restart");
