@@ -11,8 +11,8 @@
 // searched on the whole cloud), small strain or finite rotation (no follower pressure), elastic or
 // Drucker-Prager, constraints on their particles or at the face (Galerkin, their multipliers
 // solved over the ranks: Loading::ranks), `constraints: rigid_body` (pinned on the whole
-// cloud), tractions and pressures, adr, verlet, newton (constraints on their particles
-// only), or a load path by adr or lbc. Every rank
+// cloud), tractions and pressures, adr, verlet, newton (mumps, or gamg with constraints on
+// their particles only), or a load path by adr, lbc or newton. Every rank
 // builds the whole cloud and loading (O(N) memory per rank) to choose its part. Thin plates
 // (radius families): each rank's plate is its part's nodes and their mirror ghosts
 // (plate_part.hpp), fitted at its owned and near nodes.
@@ -48,6 +48,7 @@
 #include "rank_load_path.hpp"
 #include "rank_newton.hpp"
 #include "rank_memory.hpp"
+#include "rank_rigid_body.hpp"
 #include "reactions_output.hpp"
 #include "small_strain_check.hpp"
 #include "support_check.hpp"
@@ -63,8 +64,8 @@ void require_distributed(const Scene& s, const Options& opt) {
     throw InputError(s.source + ": " + key + ": " + what +
                      " is not distributed yet (mpirun -np R perinom run distributes correspondence scenes of the "
                      "classical or consistent formulation on a box or a body from files, elastic or drucker_prager at "
-                     "small strain or finite rotation, solved by adr, verlet or newton (mumps or gamg), or in load steps and stages by adr "
-                     "or lbc, with constraints on their particles or at the face or rigid_body, tractions and pressures; and "
+                     "small strain or finite rotation, solved by adr, verlet or newton (mumps or gamg), or in load steps and stages by adr, "
+                     "lbc or newton, with constraints on their particles or at the face or rigid_body, tractions and pressures; and "
                      "thin plates with radius families); run it without mpirun");
   };
   if (!opt.restart.empty()) refuse("--restart", "a restart");
@@ -231,6 +232,7 @@ int run_in_folder(const Options& opt, Scene& scene, const Ranks& world, const st
   std::vector<LoadStage> stages;  // a load path's, each stage's items coupled as `loading`'s
   for (std::size_t k = 0; k < frame.stages.size(); ++k)
     stages.push_back({frame.stages[k].name, frame.stages[k].steps, loading_of(stage_boundary(scene, k), frame.stages[k].loading)});
+  if (!thin_plate) require_rigid_body_over_ranks(frame, part, families, local.cloud, loading, stages);
   const io::Json pins = pin_results(frame);  // printed by rank 0 only (the others' stdout is silenced)
   std::size_t owned_bonds = 0;
   for (std::size_t p = 0; p < part.owned; ++p) owned_bonds += std::size_t(families.end(p) - families.begin(p));
@@ -345,10 +347,11 @@ int run_in_folder(const Options& opt, Scene& scene, const Ranks& world, const st
   barrier();
 
   if (!final_state_error.empty() && rep.failure.empty()) throw SolveError(final_state_error);
-  // As a serial run: a load step that did not balance leaves the path not converged (exit 1).
+  // As a serial run: a load step that did not balance leaves the path not converged (exit 1);
+  // Newton's failed solve is a solve failure (exit 3: it was said NOT converged, exit 1).
   // The solvers decide on values summed over the ranks: rep.failure is every rank's alike,
   // said once.
-  if (!rep.failure.empty() && scene.load_path() && !rep.diverged) {
+  if (!rep.failure.empty() && scene.load_path() && !rep.diverged && scene.solver.type != "newton") {
     if (root)
       std::fprintf(stderr, "perinom: NOT converged: %s; the last balanced state and results in %s\n", rep.failure.c_str(),
                  dir.c_str());

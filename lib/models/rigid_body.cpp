@@ -96,12 +96,18 @@ bool LoadResultant::balanced(double tolerance) const {
 }
 
 LoadResultant load_resultant(const PointCloud& cloud, const std::vector<double>& force) {
+  LoadResultant whole;
+  const Extent e = extent(cloud);
+  whole.about = e.about, whole.length = e.length;
+  return load_resultant_part(cloud, force, force.empty() ? 0 : cloud.size(), whole);
+}
+
+LoadResultant load_resultant_part(const PointCloud& cloud, const std::vector<double>& force, std::size_t count,
+                                  const LoadResultant& whole) {
   const int d = cloud.dim;
   LoadResultant r;
-  const Extent e = extent(cloud);
-  r.about = e.about, r.length = e.length;
-  if (force.empty()) return r;
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
+  r.about = whole.about, r.length = whole.length;
+  for (std::size_t i = 0; i < count; ++i) {
     std::array<double, 3> x{0, 0, 0}, f{0, 0, 0};
     for (int a = 0; a < d; ++a) x[a] = cloud.x[i * d + a] - r.about[a], f[a] = force[i * d + a];
     for (int a = 0; a < d; ++a) r.force[a] += f[a];

@@ -105,16 +105,13 @@ Body read_body(const Scene& s) {
 /// rounding in the sums, far below any load a user means to apply.
 constexpr double kBalanceTolerance = 1e-8;
 
-/// constraints: rigid_body. Refuses loads that are not balanced (every stage's loads at its
-/// end), then pins the body in every loading. `layer_loads`: the tractions act at the particles
-/// (no trace), for the message.
-void pin_rigid_body(Problem& p, bool layer_loads) {
+}  // namespace
+
+void require_balanced_loads(const Problem& p, const std::vector<LoadResultant>& resultants, bool layer_loads) {
   const Scene& s = p.scene;
-  std::vector<Loading*> loadings = {&p.loading};
-  for (auto& st : p.stages) loadings.push_back(&st.loading);
   const int d = s.dim;
-  for (std::size_t k = 0; k < loadings.size(); ++k) {
-    const LoadResultant r = load_resultant(p.cloud, loadings[k]->force);
+  for (std::size_t k = 0; k < resultants.size(); ++k) {
+    const LoadResultant& r = resultants[k];
     if (r.balanced(kBalanceTolerance)) continue;
     auto list = [](const double* v, int n) {
       std::string out = n > 1 ? "(" : "";
@@ -140,6 +137,24 @@ void pin_rigid_body(Problem& p, bool layer_loads) {
               "), whose moments need not cancel where the tractions' do: the consistent formulation applies them at "
               "the faces";
     throw InputError(s.source + ": constraints: " + text);
+  }
+}
+
+namespace {
+
+/// constraints: rigid_body. Refuses loads that are not balanced (every stage's loads at its
+/// end) when `check` (a distributed consistent run checks its ranks' trace loads instead:
+/// require_balanced_loads), then pins the body in every loading. `layer_loads`: the
+/// tractions act at the particles (no trace), for the message.
+void pin_rigid_body(Problem& p, bool layer_loads, bool check = true) {
+  const Scene& s = p.scene;
+  const int d = s.dim;
+  std::vector<Loading*> loadings = {&p.loading};
+  for (auto& st : p.stages) loadings.push_back(&st.loading);
+  if (check) {
+    std::vector<LoadResultant> resultants;
+    for (const Loading* load : loadings) resultants.push_back(load_resultant(p.cloud, load->force));
+    require_balanced_loads(p, resultants, layer_loads);
   }
   try {
     p.pins = rigid_body_pins(p.cloud);
@@ -350,6 +365,12 @@ std::vector<BoundarySpec> stage_boundary(const Scene& s, std::size_t k) {
   return boundary;
 }
 
+InputError rigid_body_pieces_error(const Scene& s, std::int64_t count, std::int64_t second) {
+  return InputError(s.source + ": constraints: rigid_body holds one body, and this one is in " + std::to_string(count) +
+                    " pieces that no bond joins (particles 0 and " + std::to_string(second) +
+                    " lie in different ones): hold each piece by supports");
+}
+
 Problem build_problem_frame(const Scene& s) {
   if (s.model.type != "correspondence" || (s.model.formulation != "classical" && s.model.formulation != "consistent"))
     throw std::logic_error("build_problem_frame: a correspondence scene of the classical or consistent formulation only");
@@ -363,8 +384,11 @@ Problem build_problem_frame(const Scene& s) {
   p.loading = make_loading(s, s.boundary, p.cloud, face_of, data);  // face-located ones uncoupled (rank_loading)
   std::vector<FaceOf> stage_faces;
   add_stages(p, data, stage_faces);
-  // The pins are chosen on the whole cloud, as a serial run chooses them.
-  if (s.constraints == "rigid_body") pin_rigid_body(p, s.model.formulation != "consistent");
+  // The pins are chosen on the whole cloud, as a serial run chooses them. The loads' balance
+  // is checked here on the outer layer's loads, the classical formulation's; the consistent
+  // formulation applies its tractions at the faces, and its ranks check those (a balanced
+  // shear was refused here: the layer's moment tau dx (L - h)).
+  if (s.constraints == "rigid_body") pin_rigid_body(p, true, s.model.formulation != "consistent");
   return p;
 }
 
@@ -418,10 +442,8 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
     // the other free (Newton then blamed a missing boundary condition on the user).
     const Pieces pieces = body_pieces(model->G().graph(), {});
     if (pieces.count > 1)
-      throw InputError(s.source + ": constraints: rigid_body holds one body, and this one is in " +
-                       std::to_string(pieces.count) + " pieces that no bond joins (particles 0 and " +
-                       std::to_string(std::find(pieces.piece.begin(), pieces.piece.end(), 1) - pieces.piece.begin()) +
-                       " lie in different ones): hold each piece by supports");
+      throw rigid_body_pieces_error(s, pieces.count,
+                                    std::find(pieces.piece.begin(), pieces.piece.end(), 1) - pieces.piece.begin());
     pin_rigid_body(p, model->trace().empty());
   }
   if (!face_of.empty()) couple_to_faces(p.loading, face_of, s.geometry, p.cloud, model->G(), data);

@@ -158,7 +158,9 @@ void integrate(Model& model, const Loading& loading, const VerletOptions& opt,
     row.resize(6 + supports + extra);
     // fint is the force at this state (accelerate ran on it): the supports' static reaction.
     if (supports > 0) loading.reactions(fint.data(), factor(t), dpp, row.data() + 6);
-    model.sum_across_ranks(row.data() + 2, int(3 + supports));
+    // The energies, the work and the reactions over the ranks: row[5] (the total, set below)
+    // is 0 here and rides along, so that one sum reaches the last reaction column.
+    model.sum_across_ranks(row.data() + 2, int(4 + supports));
     const double all_work = row[4];
     kin = row[2], strain = row[3];
     row[5] = kin + strain + released - all_work;

@@ -23,6 +23,11 @@ struct LoadResultant {
   bool balanced(double tolerance) const;
 };
 LoadResultant load_resultant(const PointCloud& cloud, const std::vector<double>& force);
+/// The same over the first `count` particles of `cloud` (a rank's owned ones; force holds at
+/// least count x d values) about whole.about, with whole.length: `whole` is the whole cloud's
+/// resultant (its about and length), so that the ranks' parts add up to it.
+LoadResultant load_resultant_part(const PointCloud& cloud, const std::vector<double>& force, std::size_t count,
+                                  const LoadResultant& whole);
 
 /// One pinned particle and the components held (0 = x, 1 = y, 2 = z).
 struct RigidBodyPin {

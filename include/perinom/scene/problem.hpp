@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "perinom/core/error.hpp"
 #include "perinom/core/timer.hpp"
 #include "perinom/geometry/body.hpp"
 #include "perinom/materials/measures.hpp"
@@ -93,11 +94,23 @@ CorrespondenceOptions correspondence_options(const Scene& scene);
 /// and bound probes, without families or a model (p.model is null). A correspondence scene of
 /// the classical or consistent formulation: throws std::logic_error for another, which the
 /// caller refuses first. `constraints: rigid_body` pins it (p.pins) as a serial run would.
+/// The loads' balance is checked here for the classical formulation only (the consistent
+/// one's tractions act at the faces: its ranks check their own, require_balanced_loads).
 /// The loading's face-located constraints are not coupled yet (a rank
 /// couples its own: rank_loading.hpp); its forces are the classical formulation's (at the
 /// outer layer), and a consistent run takes its own from its trace (rank_loading.hpp). A body
 /// from files keeps its facets (p.facets) for the ranks' shares.
 Problem build_problem_frame(const Scene& scene);
+
+/// constraints: rigid_body's check of the loads: `resultants` are the scene's loading's, then
+/// each stage's (p.stages' order), of the forces the run applies; throws InputError naming
+/// the first that is not balanced. `layer_loads`: the tractions act at the outer layer's
+/// particles (the message says why their moments need not cancel).
+void require_balanced_loads(const Problem& p, const std::vector<LoadResultant>& resultants, bool layer_loads);
+
+/// constraints: rigid_body's refusal of a body in `count` pieces, `second` the smallest
+/// particle not in particle 0's piece.
+InputError rigid_body_pieces_error(const Scene& scene, std::int64_t count, std::int64_t second);
 
 /// The boundary items of load stage k (p.stages[k]): the scene's own and the stage's (a
 /// load path without stages has one stage, of the scene's items).
