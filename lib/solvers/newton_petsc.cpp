@@ -404,17 +404,18 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
     }
     // GAMG's conjugate gradients on a stiffness a free rigid motion makes singular stop as
     // indefinite or converge, by rounding: serially a bar free along y converged with an
-    // arbitrary y translation, over 2 ranks it stopped. Asked of the matrix instead (measured:
-    // 0 to 4e-10 for a free translation, 2.5e-4 for a 600-particle plate held by rigid_body's
-    // pins and 2.8e-3 for a bar held at an end, falling as N^-1/2 and N^-1/4: 1e-7 lies
-    // between them up to billions of particles).
+    // arbitrary y translation, over 2 ranks it stopped. Asked of the matrix instead, the
+    // weakest rigid motion against the strongest held one (a fixed cut on the weakest alone,
+    // 1e-7 of ||J||, fell towards held bodies' values as they grew: 2.5e-4 at 600 particles,
+    // as N^-1/2).
     if (opt.linear_solver == "gamg") {
-      if (const double measure = rigid_null_measure(J.p); measure < 1e-7) {
-        char what[400];
+      if (const RigidNull null = rigid_null_measure(J.p); null.free()) {
+        char what[500];
         std::snprintf(what, sizeof what, "Newton (PETSc): the linear solver gamg failed in load step %d: a singular "
-                      "stiffness (a rigid motion the supports leave free meets a force of %.1e of its scale: e.g. a "
-                      "missing boundary condition, which run warns of before the solve); the last good state is load "
-                      "step %d", step, measure, step - 1);
+                      "stiffness (a rigid motion the supports leave free meets a force of %.1e of the most held "
+                      "one's: e.g. a missing boundary condition, which run warns of before the solve); the last "
+                      "good state is load step %d", step, null.largest > 0.0 ? null.smallest / null.largest : 0.0,
+                      step - 1);
         rep.failure = what;
         check(VecCopy(x_start.p, x.p), "VecCopy");
         break;

@@ -11,15 +11,16 @@
 
 namespace perinom::detail {
 
-double rigid_null_measure(Mat J) {
+RigidNull rigid_null_measure(Mat J) {
+  constexpr double none = std::numeric_limits<double>::infinity();
   MatNullSpace space = nullptr;
   check(MatGetNearNullSpace(J, &space), "MatGetNearNullSpace");
-  if (!space) return std::numeric_limits<double>::infinity();
+  if (!space) return {none, none};
   PetscBool constant = PETSC_FALSE;
   PetscInt m = 0;
   const Vec* q = nullptr;
   check(MatNullSpaceGetVecs(space, &constant, &m, &q), "MatNullSpaceGetVecs");
-  if (m == 0) return std::numeric_limits<double>::infinity();
+  if (m == 0) return {none, none};
   // The modes' values through J's own vectors: serially they were made before J's layout
   // was set up (global size -1), and MatMult refuses them.
   Vec x = nullptr;
@@ -50,8 +51,9 @@ double rigid_null_measure(Mat J) {
   for (Vec& v : w) VecDestroy(&v);
   PetscReal scale = 0.0;
   check(MatNorm(J, NORM_INFINITY, &scale), "MatNorm");
-  const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram, Eigen::EigenvaluesOnly).eigenvalues()(0);
-  return scale > 0.0 ? std::sqrt(std::max(smallest, 0.0)) / scale : std::numeric_limits<double>::infinity();
+  const Eigen::VectorXd lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram, Eigen::EigenvaluesOnly).eigenvalues();
+  if (!(scale > 0.0)) return {none, none};
+  return {std::sqrt(std::max(lambda(0), 0.0)) / scale, std::sqrt(std::max(lambda(m - 1), 0.0)) / scale};
 }
 
 }  // namespace perinom::detail
