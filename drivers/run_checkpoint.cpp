@@ -32,6 +32,7 @@ io::Checkpoint run_records(const Problem& p, const RunIdentity& id, const RunPro
   for (const auto& row : run.probe_rows) rows.insert(rows.end(), row.begin(), row.end());
   c.put_integer("probe_columns", run.probe_rows.empty() ? 0 : static_cast<std::int64_t>(run.probe_rows[0].size()));
   c.put("probe_rows", std::move(rows));
+  if (!run.stress_path.empty()) c.put("stress_path", run.stress_path);
   return c;
 }
 
@@ -78,6 +79,7 @@ RunProgress run_progress(const io::Checkpoint& c) {
     throw InputError(c.source + ": the checkpoint's probe_rows do not fill rows of probe_columns");
   for (std::size_t k = 0; columns > 0 && k < rows.size(); k += std::size_t(columns))
     run.probe_rows.emplace_back(rows.begin() + k, rows.begin() + k + columns);
+  if (c.has("stress_path")) run.stress_path = c.reals("stress_path", 2);
   return run;
 }
 

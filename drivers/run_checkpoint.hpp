@@ -7,7 +7,8 @@
 //   the run's progress: snapshot_times, snapshot_files (one name a line), snapshot_csv (one
 //     integer a snapshot: 1 where its .csv was in the folder when the checkpoint was
 //     written), last_snapshot,
-//     probe_rows with probe_columns (a load path's point-probe histories)
+//     probe_rows with probe_columns (a load path's point-probe histories), stress_path (l2,
+//     max: the stress measure's largest norms along the path)
 //   the solver's state (io/solver_states.hpp: every field of AdrState, VerletState or
 //     LoadPathState under its name, prefixed adr., verlet. or load_path.)
 #include <cstdint>
@@ -38,6 +39,10 @@ struct RunProgress {
   /// snapshot, not the scene's output.csv: a resumed run may turn csv on or off, and the
   /// earlier snapshots keep what they had). Empty in checkpoints before 2026-12-07.
   std::vector<std::int64_t> snapshot_csv;
+  /// The stress measure's largest norms along the path so far (l2, max; ProbeHistory::stress),
+  /// for the damaged Newton check of a resumed run: without them a bar broken before the
+  /// checkpoint compared its rounding stresses over rounding. Empty before 2026-12-08.
+  std::vector<double> stress_path;
 };
 
 /// FNV-1a 64 of the particles' reference positions (their bytes): a mesh or point file

@@ -19,7 +19,7 @@ SolveReport solve(Problem& p, const std::string& dir, std::vector<double>& u, io
   const std::size_t dofs = p.physics().dofs();
   // What a checkpoint holds beside the solver's state, as it is when the checkpoint is due.
   const auto progress_now = [&] {
-    RunProgress run{series.steps(), last_snapshot, probes.rows, {}};
+    RunProgress run{series.steps(), last_snapshot, probes.rows, {}, {probes.stress.l2, probes.stress.max}};
     for (const auto& s : run.snapshots)  // (a stat a snapshot, at a checkpoint only)
       run.snapshot_csv.push_back(std::filesystem::is_regular_file(dir + "/" + s.file.substr(0, s.file.rfind('.')) + ".csv"));
     return run;
@@ -66,6 +66,7 @@ SolveReport solve_scene(Problem& p, const std::string& dir, std::vector<double>&
     if (!series.steps().empty()) series.write();
     last_snapshot = restart->progress().last_snapshot;
     probes.rows = restart->progress().probe_rows;
+    if (const auto& path = restart->progress().stress_path; path.size() == 2) probes.stress = {path[0], path[1]};
   }
   try {
     return solve(p, dir, u, series, probes, last_snapshot, restart);

@@ -318,6 +318,26 @@ TEST_CASE("the Newton check holds the detached particles of a shattered bar wher
   CHECK(b.o.out.find("stress over the largest along the path") != std::string::npos);
 }
 
+TEST_CASE("the damaged Newton check of a resumed run compares the stress over the whole path", "[cli][fracture][load_path][newton][checkpoint]") {
+  // examples/brittle_bar.yaml parts before load step 150; resumed there, the steps left are all
+  // rounding for stress. The checkpoint keeps the path's largest stress norms: without them the
+  // check compared rounding over rounding (1.2e-1) and warned that the answers differ.
+  ScratchDir d;
+  const std::string scene = "'" PERINOM_SOURCE_DIR "/examples/brittle_bar.yaml' --set solver.check=newton "
+                            "--set output.checkpoint_every=150";
+  const Outcome first = perinom(d, "run " + scene + " --out first");
+  INFO(first.out << first.err);
+  REQUIRE(first.exit_code == 0);
+  const Outcome again = perinom(d, "run " + scene + " --restart first --out again");
+  INFO(again.out << again.err);
+  REQUIRE(again.exit_code == 0);
+  REQUIRE(again.out.find("resuming from") != std::string::npos);
+  const std::string summary = slurp(d.path / "again" / "summary.json");
+  CHECK(summary.find("\"stress_relative_to\": \"the largest along the path") != std::string::npos);
+  CHECK(json_number(summary, "stress_relative_l2") < 1e-6);  // measured 1.7e-9, as uninterrupted
+  CHECK(again.out.find("differ by") == std::string::npos);
+}
+
 TEST_CASE("smoke: the four-point beam with two flaws, coarse, cracks first at the lower flaw's tip and softens",
           "[cli][fracture][load_path]") {
   // examples/four_point_beam.yaml at dx = 6.25 mm (26 x 12 particles) in 200 load steps (the
