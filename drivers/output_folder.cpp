@@ -195,14 +195,19 @@ bool written_since(const std::string& dir, const std::string& name, fs::file_tim
 
 }  // namespace
 
-bool RunFolder::holds_run(const std::string& dir) {
+bool RunFolder::holds_finished_run(const std::string& dir) {
   std::error_code e;
-  return fs::is_regular_file(fs::path(dir) / manifest, e) || fs::is_regular_file(fs::path(dir) / marker, e);
+  return fs::is_regular_file(fs::path(dir) / manifest, e) && !fs::exists(fs::path(dir) / marker, e);
 }
 
 void RunFolder::record_error(const std::string& scene_file, const std::string& name, const std::string& error,
                              int exit_code) const {
   if (written_since(dir_, "summary.json", start_)) return;
+  write_error_summary(dir_, scene_file, name, error, exit_code);
+}
+
+void RunFolder::write_error_summary(const std::string& dir, const std::string& scene_file, const std::string& name,
+                                    const std::string& error, int exit_code) {
   io::Json summary = io::Json::object();
   summary["status"] = std::string("error");
   summary["scene"] = scene_file;
@@ -210,7 +215,7 @@ void RunFolder::record_error(const std::string& scene_file, const std::string& n
   summary["error"] = error;
   summary["exit_code"] = exit_code;
   try {
-    io::write_json_file(dir_ + "/summary.json", summary);
+    io::write_json_file(dir + "/summary.json", summary);
   } catch (const std::exception&) {
     // (a full disk, or summary.json a folder: the marker stays and says the run did not end)
   }

@@ -66,8 +66,14 @@ class RunFolder {
   /// The same, naming the scene file as given and its name ("": not read, left out).
   void record_error(const std::string& scene_file, const std::string& name, const std::string& error,
                     int exit_code) const;
-  /// Whether `dir` holds what a perinom run leaves there: its manifest or its marker.
-  static bool holds_run(const std::string& dir);
+  /// Whether `dir` holds a finished perinom run: its manifest and no marker.
+  static bool holds_finished_run(const std::string& dir);
+  /// Writes the error summary (as record_error) into `dir` and nothing else: for a run refused
+  /// before it had a folder, where a finished run's summary would pass for this run's. Its
+  /// other files stay (a typo in --set is no reason to lose them) and its manifest, which
+  /// lists summary.json already, still names them all for the next run to remove.
+  static void write_error_summary(const std::string& dir, const std::string& scene_file, const std::string& name,
+                                  const std::string& error, int exit_code);
   /// Runs `body`; an error it throws is recorded (record_error, with the exit code perinom
   /// gives it: 2 bad input or an output that cannot be written, 3 a failed solve, 4 other)
   /// and thrown on.

@@ -5,15 +5,8 @@
 namespace perinom::cli {
 
 void RefusedRun::record(const std::string& error, int exit_code) const {
-  if (dir_.empty() || !RunFolder::holds_run(dir_)) return;
-  try {
-    const RunFolder folder(dir_, keep_);
-    folder.announce();
-    folder.record_error(scene_file_, name_, error, exit_code);
-  } catch (const std::exception&) {
-    // The folder cannot be prepared (another run writing it, a file of the user's): it is
-    // left as it is, and the refusal said on its own.
-  }
+  if (!dir_.empty() && RunFolder::holds_finished_run(dir_))
+    RunFolder::write_error_summary(dir_, scene_file_, name_, error, exit_code);
 }
 
 }  // namespace perinom::cli

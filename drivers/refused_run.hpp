@@ -1,11 +1,11 @@
 #pragma once
 // A `perinom run` refused before its output folder is prepared (reading the scene, its memory,
 // a --restart's checkpoint and, for a restart, the particles built): the folder is left as it
-// is, unless it holds an earlier perinom run (RunFolder::holds_run). Then that run's
+// is, unless it holds a finished perinom run (RunFolder::holds_finished_run). Then that run's
 // summary.json would pass for this run's (a sweep reading summary.json after each run
-// recorded the previous case's "converged" numbers for a --set refused with exit 2): the
-// folder is prepared as for a run (the earlier run's files removed, unless --keep) and its
-// summary.json says "status": "error", as after an error found once the folder was prepared.
+// recorded the previous case's "converged" numbers for a --set refused with exit 2): it is
+// replaced by an error summary, and nothing else is touched (its snapshots stay, for a typo
+// in --set is no reason to lose them; its manifest names them for the next run to remove).
 // A --restart refused in the folder it resumes changes nothing there: the run it would
 // continue stays whole.
 #include <exception>
@@ -18,7 +18,7 @@ namespace perinom::cli {
 
 class RefusedRun {
  public:
-  RefusedRun(std::string scene_file, bool keep) : scene_file_(std::move(scene_file)), keep_(keep) {}
+  explicit RefusedRun(std::string scene_file) : scene_file_(std::move(scene_file)) {}
 
   /// The output folder once known, and the scene's name ("" before it is read).
   void folder(std::string dir, std::string name) { dir_ = std::move(dir), name_ = std::move(name); }
@@ -48,7 +48,6 @@ class RefusedRun {
   void record(const std::string& error, int exit_code) const;
 
   std::string scene_file_, dir_, name_;
-  bool keep_;
 };
 
 }  // namespace perinom::cli

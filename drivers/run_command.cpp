@@ -332,7 +332,7 @@ int run(const Options& opt) {
   PhaseTimer timer;
   // Until the folder is prepared, a refusal leaves it alone unless it holds an earlier run
   // (refused_run.hpp); the folder a --restart resumes in place is always left alone.
-  RefusedRun refused(opt.positional[0], opt.keep);
+  RefusedRun refused(opt.positional[0]);
   const auto resumed_in = [&opt](const std::string& dir) {
     std::error_code e;
     return !opt.restart.empty() && fs::equivalent(opt.restart, dir, e);

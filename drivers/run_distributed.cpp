@@ -128,7 +128,7 @@ int run_distributed(const Options& opt) {
   // Refused while reading, an earlier run's folder gets rank 0's error summary (refused_run.hpp).
   // Not with --restart, which the ranks refuse: `--restart out/s --out out/s` would have
   // emptied the run it names, which a refusal never touches.
-  RefusedRun refused(opt.positional[0], opt.keep);
+  RefusedRun refused(opt.positional[0]);
   if (root && opt.restart.empty()) refused.folder(opt.out, "");
   Scene scene = refused.recording([&] {
     return alike_on_ranks(world, [&] {
