@@ -75,7 +75,7 @@ std::string outside_body(const NearestParticle& n, const PointCloud& cloud) {
   return msg.str();
 }
 
-std::string outside_box(const BoxGeometry& box, const double* point) {
+std::string outside_box(const BoxGeometry& box, const double* point, double slack) {
   double side = 0.0, worst = 0.0;
   int axis = -1;
   bool above = false;
@@ -85,7 +85,7 @@ std::string outside_box(const BoxGeometry& box, const double* point) {
       const double past = up ? point[a] - box.max[a] : box.min[a] - point[a];
       if (past > worst) worst = past, axis = a, above = up;
     }
-  if (!(worst > 1e-9 * side)) return "";
+  if (!(worst > std::max(1e-9 * side, slack))) return "";
   std::ostringstream msg;
   msg << "lies " << worst << " m outside geometry.box (past its " << (above ? "max " : "min ") << "xyz"[axis]
       << " = " << (above ? box.max[axis] : box.min[axis]) << " m)";

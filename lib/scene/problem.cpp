@@ -199,7 +199,9 @@ BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud, const BoxGeom
   const int d = cloud.dim;
   BoundProbe b{p, {}, {}};
   if (!p.is_line) {
-    if (const std::string off = box ? outside_box(*box, p.point.data()) : ""; !off.empty())
+    // A thousandth of a spacing off is a coordinate copied to six digits, not a point off the body.
+    const double slack = cloud.spacing.empty() ? 0.0 : 1e-3 * *std::max_element(cloud.spacing.begin(), cloud.spacing.end());
+    if (const std::string off = box ? outside_box(*box, p.point.data(), slack) : ""; !off.empty())
       throw InputError(p.where + ".point: probe '" + p.name + "' " + off +
                        "; a point probe reads the particle nearest its point, and with reconstruct extrapolates "
                        "from it past the surface (a bar in uniform tension read 3% high 1.2 spacings beyond its "

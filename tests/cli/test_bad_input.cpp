@@ -177,6 +177,8 @@ TEST_CASE("a point probe outside the box names the probe the distance and the fa
                    "--set probes[0].point=[0.005,0.0112]");
   require_rejected(tiny_scene, {"probes[0].point: probe 'top_uy' lies 0.005 m outside geometry.box (past its max y"},
                    "--set probes[0].point=[0.005,0.015]");
+  // A coordinate copied to six digits is not off the body: 5e-4 of a spacing past the face passes.
+  require_valid(tiny_scene, "--set probes[0].point=[0.005,0.0100005]");
 }
 
 TEST_CASE("a probe with both point and line or neither is refused at the key it has or lacks", "[cli]") {

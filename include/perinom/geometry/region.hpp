@@ -66,10 +66,10 @@ std::vector<ParticleId> nearest_particles(const PointCloud& cloud, const double*
 /// particle N at (x, y)): outside the body or in a hole".
 std::string outside_body(const NearestParticle& nearest, const PointCloud& cloud);
 
-/// A point outside the box by more than rounding (1e-9 of its largest side): "lies D m outside
-/// geometry.box (past its max x = X m)"; empty otherwise. outside_body lets a point two
-/// spacings off pass, and a reconstructed probe there extrapolates past the surface.
-std::string outside_box(const BoxGeometry& box, const double* point);
+/// A point outside the box by more than `slack` (and rounding, 1e-9 of its largest side): "lies D
+/// m outside geometry.box (past its max x = X m)"; empty otherwise. outside_body lets a point
+/// two spacings off pass, and a reconstructed probe there extrapolates past the surface.
+std::string outside_box(const BoxGeometry& box, const double* point, double slack = 0.0);
 
 /// A point inside one of the box's holes (deeper than 1e-6 of its radius: a point on the
 /// edge is on the body): "lies inside hole K (centre (...), radius R m)"; empty otherwise. A
