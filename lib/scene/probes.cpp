@@ -70,4 +70,60 @@ std::vector<double> ProbeReadout::line_row(const BoundProbe& probe, std::size_t 
   return row;
 }
 
+namespace {
+int axis_of(char c) { return c == 'x' ? 0 : c == 'y' ? 1 : 2; }
+}  // namespace
+
+bool stress_field(const std::string& field) {
+  return field == "stress" || field == "von_mises" || field == "mean_stress";
+}
+
+std::vector<double> stress_gradient(const CorrespondenceModel& model, const std::vector<double>& sigma) {
+  std::vector<double> out(sigma.size() * model.G().dim());
+  model.G().apply(sigma.data(), 9, out.data());
+  return out;
+}
+
+void reconstruct_stress(const std::vector<double>& sigma, const std::vector<double>& grad_sigma,
+                        const PointCloud& cloud, std::size_t i, const double* y, double* out) {
+  const int d = cloud.dim;
+  for (int c = 0; c < 9; ++c) {
+    out[c] = sigma[i * 9 + c];
+    for (int b = 0; b < d; ++b) out[c] += grad_sigma[(i * 9 + c) * d + b] * (y[b] - cloud.x[i * d + b]);
+  }
+}
+
+double stress_probe_value(const ProbeSpec& spec, const double* sigma3) {
+  if (spec.field == "stress") return sigma3[axis_of(spec.component[0]) * 3 + axis_of(spec.component[1])];
+  if (spec.field == "mean_stress") return mean_stress(sigma3);
+  return von_mises(sigma3);
+}
+
+double probe_value(const ProbeSpec& spec, std::size_t i, const ProbeFields& f) {
+  const int d = f.cloud.dim;
+  if (spec.field == "displacement") return f.u[i * d + axis_of(spec.component[0])];
+  if (stress_field(spec.field)) return stress_probe_value(spec, f.sigma.data() + i * 9);
+  if (spec.field == "eq_plastic_strain")
+    return f.eq_plastic_strain ? (*f.eq_plastic_strain)[i] : 0.0;
+  if (f.fields)
+    for (const auto& field : *f.fields)
+      if (field.name == spec.field) return field.values[i * field.components];
+  throw std::logic_error("probe_value: unknown field " + spec.field);
+}
+
+double point_probe_value(const BoundProbe& probe, const ProbeFields& f) {
+  const std::size_t i = probe.particles.at(0);
+  if (probe.spec.reconstruct && stress_field(probe.spec.field)) {
+    if (!f.grad_sigma) throw std::logic_error("point_probe_value: a reconstructed stress probe needs grad sigma");
+    double s[9];
+    reconstruct_stress(f.sigma, *f.grad_sigma, f.cloud, i, probe.spec.point.data(), s);
+    return stress_probe_value(probe.spec, s);
+  }
+  double v = probe_value(probe.spec, i, f);
+  if (!probe.spec.reconstruct) return v;
+  const int d = f.cloud.dim, a = axis_of(probe.spec.component[0]);
+  for (int b = 0; b < d; ++b) v += f.H[(i * d + a) * d + b] * (probe.spec.point[b] - f.cloud.x[i * d + b]);
+  return v;
+}
+
 }  // namespace perinom

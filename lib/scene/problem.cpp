@@ -1,7 +1,6 @@
 #include "perinom/scene/problem.hpp"
 
 #include <algorithm>
-#include <sstream>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -194,64 +193,6 @@ namespace {
 /// The box a lattice body fills (none for a body from files: it has no box).
 const BoxGeometry* lattice_box(const Scene& s) { return s.body_files.given() ? nullptr : &s.geometry; }
 }  // namespace
-
-BoundProbe bind_probe(const ProbeSpec& p, const PointCloud& cloud, const BoxGeometry* box) {
-  const int d = cloud.dim;
-  BoundProbe b{p, {}, {}};
-  if (!p.is_line) {
-    // A thousandth of a spacing off is a coordinate copied to six digits, not a point off the body.
-    const double slack = cloud.spacing.empty() ? 0.0 : 1e-3 * *std::max_element(cloud.spacing.begin(), cloud.spacing.end());
-    if (const std::string off = box ? outside_box(*box, p.point.data(), slack) : ""; !off.empty())
-      throw InputError(p.where + ".point: probe '" + p.name + "' " + off +
-                       "; a point probe reads the particle nearest its point, and with reconstruct extrapolates "
-                       "from it past the surface (a bar in uniform tension read 3% high 1.2 spacings beyond its "
-                       "end): put the point on the body's surface or inside it");
-    if (const std::string hole = box ? inside_hole(*box, p.point.data()) : ""; !hole.empty())
-      throw InputError(p.where + ".point: probe '" + p.name + "' " + hole +
-                       "; a point probe reads the particle nearest its point, here one on the hole's edge");
-    const NearestParticle nearest = nearest_particle(cloud, p.point.data());
-    const std::string outside = outside_body(nearest, cloud);
-    if (!outside.empty())
-      throw InputError(p.where + ".point: probe '" + p.name + "' " + outside +
-                       "; a point probe reads the particle nearest its point");
-    b.particles.push_back(nearest.id);
-    return b;
-  }
-  double len2 = 0.0;
-  for (int a = 0; a < d; ++a) len2 += std::pow(p.to[a] - p.from[a], 2);
-  if (!(len2 > 0.0)) throw InputError(p.where + ".line: probe '" + p.name + "' has from equal to to");
-  const double half = 0.5 * *std::max_element(cloud.spacing.begin(), cloud.spacing.end());
-  std::vector<std::pair<double, ParticleId>> hits;
-  double closest = INFINITY;  // squared, for the error when none is within half a spacing
-  std::size_t nearest = 0;
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    double t = 0.0;
-    for (int a = 0; a < d; ++a) t += (cloud.x[i * d + a] - p.from[a]) * (p.to[a] - p.from[a]);
-    t = std::clamp(t / len2, 0.0, 1.0);
-    double r2 = 0.0;
-    for (int a = 0; a < d; ++a)
-      r2 += std::pow(cloud.x[i * d + a] - (p.from[a] + t * (p.to[a] - p.from[a])), 2);
-    if (r2 <= half * half * (1.0 + 1e-9)) hits.emplace_back(t * std::sqrt(len2), static_cast<ParticleId>(i));
-    if (r2 < closest) closest = r2, nearest = i;
-  }
-  if (hits.empty()) {
-    // A 3-D line through the centre of a bar an even number of particles across passes the
-    // four nearest rows at sqrt(2) dx / 2: "meets no particle" alone read as a wrong line.
-    std::ostringstream msg;
-    msg << p.where << ".line: probe '" << p.name << "' meets no particle: a line reads the particles within half a "
-        << "spacing (" << half << " m) of it, and the nearest, particle " << nearest << " at (";
-    for (int a = 0; a < d; ++a) msg << (a ? ", " : "") << cloud.x[nearest * d + a];
-    msg << "), is " << std::sqrt(closest) << " m from it; a line between rows of particles (through the middle "
-        << "of a body an even number of particles across) meets none: move it onto a row";
-    throw InputError(msg.str());
-  }
-  std::sort(hits.begin(), hits.end());
-  for (const auto& h : hits) {
-    b.along.push_back(h.first);
-    b.particles.push_back(h.second);
-  }
-  return b;
-}
 
 std::string horizon_key(const Scene& s) {
   return s.discretization.horizon_neighbors > 0 ? "discretization.horizon.neighbors" : "discretization.horizon.ratio";
@@ -458,63 +399,6 @@ Problem build_correspondence_problem(const Scene& s, PhaseTimer* timer) {
   p.model = std::move(model);
   if (timer) timer->stop();
   return p;
-}
-
-namespace {
-int axis_of(char c) { return c == 'x' ? 0 : c == 'y' ? 1 : 2; }
-}  // namespace
-
-
-bool stress_field(const std::string& field) {
-  return field == "stress" || field == "von_mises" || field == "mean_stress";
-}
-
-std::vector<double> stress_gradient(const CorrespondenceModel& model, const std::vector<double>& sigma) {
-  std::vector<double> out(sigma.size() * model.G().dim());
-  model.G().apply(sigma.data(), 9, out.data());
-  return out;
-}
-
-void reconstruct_stress(const std::vector<double>& sigma, const std::vector<double>& grad_sigma,
-                        const PointCloud& cloud, std::size_t i, const double* y, double* out) {
-  const int d = cloud.dim;
-  for (int c = 0; c < 9; ++c) {
-    out[c] = sigma[i * 9 + c];
-    for (int b = 0; b < d; ++b) out[c] += grad_sigma[(i * 9 + c) * d + b] * (y[b] - cloud.x[i * d + b]);
-  }
-}
-
-double stress_probe_value(const ProbeSpec& spec, const double* sigma3) {
-  if (spec.field == "stress") return sigma3[axis_of(spec.component[0]) * 3 + axis_of(spec.component[1])];
-  if (spec.field == "mean_stress") return mean_stress(sigma3);
-  return von_mises(sigma3);
-}
-
-double probe_value(const ProbeSpec& spec, std::size_t i, const ProbeFields& f) {
-  const int d = f.cloud.dim;
-  if (spec.field == "displacement") return f.u[i * d + axis_of(spec.component[0])];
-  if (stress_field(spec.field)) return stress_probe_value(spec, f.sigma.data() + i * 9);
-  if (spec.field == "eq_plastic_strain")
-    return f.eq_plastic_strain ? (*f.eq_plastic_strain)[i] : 0.0;
-  if (f.fields)
-    for (const auto& field : *f.fields)
-      if (field.name == spec.field) return field.values[i * field.components];
-  throw std::logic_error("probe_value: unknown field " + spec.field);
-}
-
-double point_probe_value(const BoundProbe& probe, const ProbeFields& f) {
-  const std::size_t i = probe.particles.at(0);
-  if (probe.spec.reconstruct && stress_field(probe.spec.field)) {
-    if (!f.grad_sigma) throw std::logic_error("point_probe_value: a reconstructed stress probe needs grad sigma");
-    double s[9];
-    reconstruct_stress(f.sigma, *f.grad_sigma, f.cloud, i, probe.spec.point.data(), s);
-    return stress_probe_value(probe.spec, s);
-  }
-  double v = probe_value(probe.spec, i, f);
-  if (!probe.spec.reconstruct) return v;
-  const int d = f.cloud.dim, a = axis_of(probe.spec.component[0]);
-  for (int b = 0; b < d; ++b) v += f.H[(i * d + a) * d + b] * (probe.spec.point[b] - f.cloud.x[i * d + b]);
-  return v;
 }
 
 }  // namespace perinom
