@@ -18,10 +18,13 @@ namespace perinom::cli {
 
 class RefusedRun {
  public:
-  explicit RefusedRun(std::string scene_file) : scene_file_(std::move(scene_file)) {}
+  /// `restart`: the --restart folder ("" without): never recorded into.
+  RefusedRun(std::string scene_file, std::string restart)
+      : scene_file_(std::move(scene_file)), restart_(std::move(restart)) {}
 
-  /// The output folder once known, and the scene's name ("" before it is read).
-  void folder(std::string dir, std::string name) { dir_ = std::move(dir), name_ = std::move(name); }
+  /// The output folder once known, and the scene's name ("" before it is read); none when it
+  /// is the folder --restart resumes in place (or "").
+  void folder(const std::string& dir, std::string name);
   /// From here on nothing is recorded: the folder is the run's (RunFolder records its errors),
   /// or the --restart folder resumed in place.
   void leave_folder() { dir_.clear(); }
@@ -47,7 +50,7 @@ class RefusedRun {
  private:
   void record(const std::string& error, int exit_code) const;
 
-  std::string scene_file_, dir_, name_;
+  std::string scene_file_, restart_, dir_, name_;
 };
 
 }  // namespace perinom::cli

@@ -332,18 +332,14 @@ int run(const Options& opt) {
   PhaseTimer timer;
   // Until the folder is prepared, a refusal leaves it alone unless it holds an earlier run
   // (refused_run.hpp); the folder a --restart resumes in place is always left alone.
-  RefusedRun refused(opt.positional[0]);
-  const auto resumed_in = [&opt](const std::string& dir) {
-    std::error_code e;
-    return !opt.restart.empty() && fs::equivalent(opt.restart, dir, e);
-  };
-  if (!opt.out.empty() && !resumed_in(opt.out)) refused.folder(opt.out, "");
+  RefusedRun refused(opt.positional[0], opt.restart);
+  if (!opt.out.empty()) refused.folder(opt.out, "");
   return refused.recording([&]() -> int {
     timer.start("read scene");
     const Scene scene = read_scene(opt.positional[0], opt.overrides);
     // --restart DIR continues in DIR unless --out names another folder.
     const std::string dir = !opt.out.empty() ? opt.out : !opt.restart.empty() ? opt.restart : "out/" + scene.name;
-    if (!resumed_in(dir)) refused.folder(dir, scene.name);
+    refused.folder(dir, scene.name);
     const MemoryEstimate estimate = estimate_memory(scene);
     require_memory(scene, estimate, opt.max_memory > 0.0 ? opt.max_memory : available_memory(), opt.max_memory > 0.0);
     // The checkpoint is checked against the scene before anything is built.

@@ -125,11 +125,11 @@ int run_distributed(const Options& opt) {
   if (!root && !std::freopen("/dev/null", "w", stdout)) throw InputError("cannot silence rank " + std::to_string(world.rank));
   PhaseTimer timer;
   timer.start("read scene");
-  // Refused while reading, an earlier run's folder gets rank 0's error summary (refused_run.hpp).
-  // Not with --restart, which the ranks refuse: `--restart out/s --out out/s` would have
-  // emptied the run it names, which a refusal never touches.
-  RefusedRun refused(opt.positional[0]);
-  if (root && opt.restart.empty()) refused.folder(opt.out, "");
+  // Refused while reading, an earlier run's folder gets rank 0's error summary (refused_run.hpp),
+  // not the one --restart names (the ranks refuse restarts): `--restart out/s --out out/s`
+  // had emptied it.
+  RefusedRun refused(opt.positional[0], opt.restart);
+  if (root) refused.folder(opt.out, "");
   Scene scene = refused.recording([&] {
     return alike_on_ranks(world, [&] {
       Scene s = read_scene(opt.positional[0], opt.overrides);

@@ -410,12 +410,16 @@ SolveReport solve(TangentModel& model, const Loading& loading, const NewtonOptio
     // as N^-1/2).
     if (opt.linear_solver == "gamg") {
       if (const RigidNull null = rigid_null_measure(J.p); null.free()) {
-        char what[500];
+        char force[160], what[600];
+        if (null.largest < 1e-12)  // every rigid motion free: a ratio of two rounding values says nothing
+          std::snprintf(force, sizeof force, "every rigid motion meets a force of %.1e of the stiffness's scale",
+                        null.largest);
+        else
+          std::snprintf(force, sizeof force, "a rigid motion the supports leave free meets a force of %.1e of the "
+                        "most held one's", null.smallest / null.largest);
         std::snprintf(what, sizeof what, "Newton (PETSc): the linear solver gamg failed in load step %d: a singular "
-                      "stiffness (a rigid motion the supports leave free meets a force of %.1e of the most held "
-                      "one's: e.g. a missing boundary condition, which run warns of before the solve); the last "
-                      "good state is load step %d", step, null.largest > 0.0 ? null.smallest / null.largest : 0.0,
-                      step - 1);
+                      "stiffness (%s: e.g. a missing boundary condition, which run warns of before the solve); the "
+                      "last good state is load step %d", step, force, step - 1);
         rep.failure = what;
         check(VecCopy(x_start.p, x.p), "VecCopy");
         break;
