@@ -22,19 +22,6 @@ void require_ok(const Outcome& o) {
   REQUIRE(o.exit_code == 0);
 }
 
-/// A 4 x 4 cloud from a point file, checkpointed every 5 iterations.
-const std::string points_scene = R"(name: points
-dimension: 2
-geometry: {points: cloud.csv}
-discretization: {dx: 0.001, horizon: {ratio: 2.015}}
-material: {type: linear_elastic, E: 1.0e9, nu: 0.25, density: 1000.0}
-model: {formulation: classical, operator_order: 1}
-boundary:
-  - {region: {box: {min: [0.0, 0.0], max: [0.004, 0.001]}}, fix: [x, y]}
-  - {region: {box: {min: [0.0, 0.003], max: [0.004, 0.004]}}, displacement: {y: 1.0e-6}}
-output: {checkpoint_every: 5}
-)";
-
 /// The cloud's text, `rows` of its 16 points, `separator` between the numbers.
 std::string cloud(int rows = 16, const std::string& separator = ",") {
   std::ostringstream csv;
@@ -91,7 +78,7 @@ TEST_CASE("a restart refused once the particles are built leaves the folder it r
   // folder was cleaned in place: a refused restart left checkpoint.bin and an error summary,
   // the finished run's snapshots and history gone.
   ScratchDir d;
-  std::ofstream(d.path / "scene.yaml") << points_scene;
+  std::ofstream(d.path / "scene.yaml") << point_file_scene;
   std::ofstream(d.path / "cloud.csv") << cloud();
   require_ok(perinom(d, "run scene.yaml --out written"));
   const auto before = contents(d.path / "written");

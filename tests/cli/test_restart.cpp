@@ -334,17 +334,7 @@ TEST_CASE("a checkpoint is refused when the point file under the same scene text
         csv << 0.0005 + 0.001 * i + (i + j == 6 ? shift : 0.0) << "," << 0.0005 + 0.001 * j << "," << volume << "\n";
   };
   write_cloud(0.0);
-  std::ofstream(d.path / "scene.yaml") << R"(name: points
-dimension: 2
-geometry: {points: cloud.csv}
-discretization: {dx: 0.001, horizon: {ratio: 2.015}}
-material: {type: linear_elastic, E: 1.0e9, nu: 0.25, density: 1000.0}
-model: {formulation: classical, operator_order: 1}
-boundary:
-  - {region: {box: {min: [0.0, 0.0], max: [0.004, 0.001]}}, fix: [x, y]}
-  - {region: {box: {min: [0.0, 0.003], max: [0.004, 0.004]}}, displacement: {y: 1.0e-6}}
-output: {checkpoint_every: 5}
-)";
+  std::ofstream(d.path / "scene.yaml") << point_file_scene;
   require_ok(perinom(d, "run scene.yaml --out written"));
   require_ok(perinom(d, "run scene.yaml --restart written --out again"));  // the same cloud resumes
   write_cloud(1e-5);

@@ -42,6 +42,20 @@ struct ScratchDir {
   ScratchDir& operator=(const ScratchDir&) = delete;
 };
 
+/// A 4 x 4 cloud from a point file cloud.csv (spacing 1 mm, volumes 1e-6), held at its bottom
+/// row and pulled at its top, checkpointed every 5 iterations.
+inline const std::string point_file_scene = R"(name: points
+dimension: 2
+geometry: {points: cloud.csv}
+discretization: {dx: 0.001, horizon: {ratio: 2.015}}
+material: {type: linear_elastic, E: 1.0e9, nu: 0.25, density: 1000.0}
+model: {formulation: classical, operator_order: 1}
+boundary:
+  - {region: {box: {min: [0.0, 0.0], max: [0.004, 0.001]}}, fix: [x, y]}
+  - {region: {box: {min: [0.0, 0.003], max: [0.004, 0.004]}}, displacement: {y: 1.0e-6}}
+output: {checkpoint_every: 5}
+)";
+
 /// A valid 2-D scene: 10 x 10 particles, bottom fixed, pressure on top, two probes.
 inline const std::string tiny_scene = R"(name: tiny
 dimension: 2
